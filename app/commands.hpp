@@ -1,0 +1,38 @@
+#pragma once
+// The `shadetlm` subcommands. Each registers its options on the CLI11 app and returns
+// the function that runs it; input errors are thrown as core::InputError and turned
+// into exit code 2 by main().
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "core/frame.hpp"
+#include "core/scene.hpp"
+
+namespace app {
+
+struct Command {
+  CLI::App* cli;            // the subcommand's options
+  std::function<int()> run;  // runs it once parsed; returns the exit code
+};
+
+Command add_reference_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
+
+// Shared by the rendering commands.
+struct SceneOptions {
+  std::string scene;                 // empty: the built-in demo
+  std::vector<std::string> overrides;  // --set key=value
+  void add_to(CLI::App& cmd);
+  core::Scene load() const;
+};
+
+// Stamps the header attributes (version, scene, resolved configuration, renderer).
+void describe(core::Frame& frame, const core::Scene& scene, const SceneOptions& options,
+              const std::string& renderer);
+// Writes the EXR and, if asked, the PNG preview, creating the folders they go into.
+void write_frame(const core::Frame& frame, const std::string& exr, const std::string& png);
+
+}  // namespace app

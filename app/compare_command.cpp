@@ -1,0 +1,47 @@
+// shadetlm compare A.exr B.exr [--layer RGB|Z|N] [--fail T] [--failpercent P]
+//                  [--hardfail H] [--diff diff.exr] [--json]
+#include <iostream>
+
+#include "app/commands.hpp"
+#include "core/compare.hpp"
+
+namespace app {
+
+Command add_compare_command(CLI::App& app) {
+  struct Options {
+    std::string a, b, diff;
+    core::CompareOptions compare;
+    bool json = false;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "compare two EXR frames per layer (B is the reference); exit 0 pass, 2 fail");
+  cmd->add_option("a", opt->a, "frame under test")->required();
+  cmd->add_option("b", opt->b, "reference frame")->required();
+  cmd->add_option("--layer", opt->compare.layers, "layers to compare (default: all present)")
+      ->check(CLI::IsMember({"RGB", "Z", "N"}));
+  cmd->add_option("--fail", opt->compare.fail, "a pixel fails over this absolute error")->capture_default_str();
+  cmd->add_option("--failpercent", opt->compare.fail_percent, "the layer fails when more than this % of pixels fail")
+      ->capture_default_str();
+  cmd->add_option("--hardfail", opt->compare.hard_fail, "the layer fails when any pixel's error is over this");
+  cmd->add_option("--diff", opt->diff, "write |A - B| per channel to this EXR");
+  cmd->add_flag("--json", opt->json, "print the metrics as JSON");
+  return {cmd, [opt]() {
+            const core::Frame a = core::read_exr(opt->a), b = core::read_exr(opt->b);
+            const core::CompareResult r = core::compare_frames(a, b, opt->compare);
+            if (opt->json) {
+              std::cout << r.to_json().dump(2) << "\n";
+            } else {
+              for (const auto& m : r.layers)
+                std::cout << m.layer << ": max " << m.max_abs << " at (" << m.max_x << ", " << m.max_y
+                          << "), rmse " << m.rmse << ", psnr " << m.psnr << " dB, " << m.over_percent
+                          << " % of pixels over " << opt->compare.fail << (m.pass ? "" : "  FAIL") << "\n";
+              std::cout << r.verdict() << "\n";
+            }
+            if (!opt->diff.empty() && r.problem.empty())
+              write_frame(core::difference_frame(a, b, r), opt->diff, "");
+            return r.pass ? 0 : 2;
+          }};
+}
+
+}  // namespace app

@@ -1,0 +1,39 @@
+// shadetlm reference [SCENE] -o ref.exr [--preview ref.png] [--set key=value ...]
+#include <chrono>
+#include <iostream>
+
+#include "app/commands.hpp"
+#include "reference/reference.hpp"
+
+namespace app {
+
+Command add_reference_command(CLI::App& app) {
+  struct Options {
+    SceneOptions scene;
+    std::string output = "out/reference.exr", preview;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand("reference", "render a scene through the golden model (exact, double precision)");
+  opt->scene.add_to(*cmd);
+  cmd->add_option("-o,--output", opt->output, "EXR frame to write")->capture_default_str();
+  cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview");
+  return {cmd, [opt]() {
+            const core::Scene scene = opt->scene.load();
+            const auto start = std::chrono::steady_clock::now();
+            const reference::Image image = reference::render(scene);
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            core::Frame frame = reference::to_frame(image);
+            describe(frame, scene, opt->scene, "reference");
+            write_frame(frame, opt->output, opt->preview);
+            size_t covered = 0;
+            for (double a : image.alpha) covered += a > 0;
+            std::cout << "reference: " << scene.file << ", " << image.width << "x" << image.height
+                      << ", " << covered << " covered pixels, " << seconds << " s\n"
+                      << "  wrote " << opt->output << (opt->preview.empty() ? "" : " and " + opt->preview)
+                      << "\n";
+            return 0;
+          }};
+}
+
+}  // namespace app

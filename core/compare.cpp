@@ -1,0 +1,134 @@
+#include "core/compare.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace core {
+
+namespace {
+const std::vector<std::pair<std::string, std::vector<std::string>>>& layer_table() {
+  static const std::vector<std::pair<std::string, std::vector<std::string>>> t = {
+      {"RGB", {"R", "G", "B", "A"}}, {"Z", {"Z"}}, {"N", {"N.X", "N.Y", "N.Z"}}};
+  return t;
+}
+
+double difference(float a, float b) {
+  if (a == b) return 0;  // also equal infinities
+  if (!std::isfinite(a) || !std::isfinite(b)) return std::numeric_limits<double>::infinity();
+  return std::abs(double(a) - double(b));
+}
+
+std::string number(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+}  // namespace
+
+CompareResult compare_frames(const Frame& a, const Frame& b, const CompareOptions& opt) {
+  CompareResult r;
+  if (a.width != b.width || a.height != b.height) {
+    r.pass = false;
+    r.problem = "resolutions differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                " against " + std::to_string(b.width) + "x" + std::to_string(b.height);
+    return r;
+  }
+  for (const auto& [layer, names] : layer_table()) {
+    const bool asked = std::find(opt.layers.begin(), opt.layers.end(), layer) != opt.layers.end();
+    std::vector<std::string> chans;
+    for (const auto& n : names) {
+      const bool in_a = a.find(n) != nullptr, in_b = b.find(n) != nullptr;
+      if (in_a && in_b) {
+        chans.push_back(n);
+      } else if ((in_a || in_b) && !(layer == "RGB" && n == "A")) {
+        if (opt.layers.empty() || asked) {
+          r.pass = false;
+          r.problem += (r.problem.empty() ? "" : "; ") + std::string("channel ") + n +
+                       " is only in " + (in_a ? "A" : "B");
+        }
+      }
+    }
+    if (layer == "RGB" && chans.size() == 1) chans.clear();  // A alone is no colour layer
+    if (asked && chans.empty()) {
+      r.pass = false;
+      r.problem += (r.problem.empty() ? "" : "; ") + ("no " + layer + " layer in both frames");
+    }
+    if (chans.empty() || (!opt.layers.empty() && !asked)) continue;
+
+    LayerMetrics m;
+    m.layer = layer;
+    m.channels = chans;
+    if (layer == "Z") {
+      m.peak = 0;
+      for (float z : b.at("Z"))
+        if (std::isfinite(z)) m.peak = std::max(m.peak, double(std::abs(z)));
+      if (m.peak == 0) m.peak = 1;
+    }
+    std::vector<const std::vector<float>*> ca, cb;
+    for (const auto& n : chans) {
+      ca.push_back(&a.at(n));
+      cb.push_back(&b.at(n));
+    }
+    double sum_sq = 0;
+    for (size_t i = 0; i < a.pixel_count(); ++i) {
+      double e = 0;
+      for (size_t k = 0; k < chans.size(); ++k) {
+        double d = difference((*ca[k])[i], (*cb[k])[i]);
+        sum_sq += d * d;
+        e = std::max(e, d);
+      }
+      if (e > m.max_abs) {
+        m.max_abs = e;
+        m.max_x = int(i % a.width);
+        m.max_y = int(i / a.width);
+      }
+      if (e > opt.fail) ++m.over;
+    }
+    const double mse = sum_sq / (double(a.pixel_count()) * chans.size());
+    m.rmse = std::sqrt(mse);
+    m.psnr = mse == 0 ? std::numeric_limits<double>::infinity() : 10 * std::log10(m.peak * m.peak / mse);
+    m.over_percent = 100.0 * double(m.over) / double(a.pixel_count());
+    m.pass = m.over_percent <= opt.fail_percent && m.max_abs <= opt.hard_fail;
+    r.pass = r.pass && m.pass;
+    r.layers.push_back(m);
+  }
+  return r;
+}
+
+Frame difference_frame(const Frame& a, const Frame& b, const CompareResult& result) {
+  Frame d(a.width, a.height);
+  for (const auto& m : result.layers)
+    for (const auto& n : m.channels) {
+      std::vector<float>& out = d.add(n);
+      const auto &va = a.at(n), &vb = b.at(n);
+      for (size_t i = 0; i < out.size(); ++i) out[i] = float(difference(va[i], vb[i]));
+    }
+  return d;
+}
+
+nlohmann::json CompareResult::to_json() const {
+  // JSON has no infinity: a non-finite figure is written as a string.
+  auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(number(x)); };
+  nlohmann::json j = {{"pass", pass}, {"layers", nlohmann::json::object()}};
+  if (!problem.empty()) j["problem"] = problem;
+  for (const auto& m : layers)
+    j["layers"][m.layer] = {{"channels", m.channels},   {"max", num(m.max_abs)},
+                            {"max_at", {m.max_x, m.max_y}}, {"rmse", num(m.rmse)},
+                            {"psnr", num(m.psnr)},        {"peak", m.peak},
+                            {"over", m.over},             {"over_percent", m.over_percent},
+                            {"pass", m.pass}};
+  return j;
+}
+
+std::string CompareResult::verdict() const {
+  std::string s = pass ? "PASS" : "FAIL";
+  if (!problem.empty()) s += ": " + problem;
+  for (const auto& m : layers)
+    s += "  " + m.layer + (m.pass ? "" : "(fail)") + " max " + number(m.max_abs) + " psnr " +
+         number(m.psnr);
+  return s;
+}
+
+}  // namespace core

@@ -1,0 +1,124 @@
+#include "core/coverage.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace core {
+
+namespace {
+// Signed distances of a clip-space point to the six clipping planes (inside ≥ 0).
+double plane_distance(const glm::dvec4& p, int plane) {
+  switch (plane) {
+    case 0: return p.z + p.w;                 // near
+    case 1: return p.w - p.z;                 // far
+    case 2: return kGuardBand * p.w - p.x;
+    case 3: return kGuardBand * p.w + p.x;
+    case 4: return kGuardBand * p.w - p.y;
+    default: return kGuardBand * p.w + p.y;
+  }
+}
+
+int64_t floor_div(int64_t a, int64_t b) {  // b > 0
+  int64_t q = a / b;
+  return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
+}  // namespace
+
+std::vector<ClipVertex> clip_triangle(const glm::dvec4& c0, const glm::dvec4& c1,
+                                      const glm::dvec4& c2) {
+  std::vector<ClipVertex> poly = {{c0, {1, 0, 0}}, {c1, {0, 1, 0}}, {c2, {0, 0, 1}}};
+  std::vector<ClipVertex> next;
+  for (int plane = 0; plane < 6 && !poly.empty(); ++plane) {
+    next.clear();
+    for (size_t i = 0; i < poly.size(); ++i) {  // Sutherland–Hodgman
+      const ClipVertex& a = poly[i];
+      const ClipVertex& b = poly[(i + 1) % poly.size()];
+      const double da = plane_distance(a.clip, plane), db = plane_distance(b.clip, plane);
+      if (da >= 0) next.push_back(a);
+      if ((da >= 0) != (db >= 0)) {
+        const double t = da / (da - db);
+        next.push_back({a.clip + (b.clip - a.clip) * t, a.bary + (b.bary - a.bary) * t});
+      }
+    }
+    poly.swap(next);
+  }
+  if (poly.size() < 3) poly.clear();
+  return poly;
+}
+
+glm::dvec3 to_screen(const glm::dvec4& c, int width, int height) {
+  return {(c.x / c.w * 0.5 + 0.5) * width, (0.5 - c.y / c.w * 0.5) * height, c.z / c.w};
+}
+
+bool SnappedTriangle::top_left(int k) const {
+  const int n = (k + 1) % 3;
+  const int64_t dx = x[n] - x[k], dy = y[n] - y[k];
+  return dy < 0 || (dy == 0 && dx > 0);  // left edge, or horizontal top edge
+}
+
+int64_t SnappedTriangle::edge(int k, int px, int py) const {
+  const int n = (k + 1) % 3;
+  const int64_t cx = int64_t(px) * kSubpixelScale + kSubpixelScale / 2;
+  const int64_t cy = int64_t(py) * kSubpixelScale + kSubpixelScale / 2;
+  return (x[n] - x[k]) * (cy - y[k]) - (y[n] - y[k]) * (cx - x[k]);
+}
+
+bool SnappedTriangle::covers(int px, int py) const {
+  for (int k = 0; k < 3; ++k) {
+    const int64_t e = edge(k, px, py);
+    if (e < 0 || (e == 0 && !top_left(k))) return false;
+  }
+  return true;
+}
+
+std::pair<int, int> SnappedTriangle::row_span(int py) const {
+  // Each edge function is linear in px along the row: alpha·px + beta ≥ bias.
+  int64_t lo = x0, hi = x1;
+  for (int k = 0; k < 3 && lo <= hi; ++k) {
+    const int n = (k + 1) % 3;
+    const int64_t dx = x[n] - x[k], dy = y[n] - y[k];
+    const int64_t cy = int64_t(py) * kSubpixelScale + kSubpixelScale / 2;
+    const int64_t alpha = -dy * kSubpixelScale;
+    const int64_t beta = dx * (cy - y[k]) - dy * (kSubpixelScale / 2 - x[k]);
+    const int64_t need = top_left(k) ? 0 : 1;  // alpha·px + beta ≥ need
+    if (alpha > 0)
+      lo = std::max(lo, ceil_div(need - beta, alpha));
+    else if (alpha < 0)
+      hi = std::min(hi, floor_div(beta - need, -alpha));
+    else if (beta < need)
+      hi = lo - 1;
+  }
+  if (lo > hi) return {x0, x0};
+  return {int(lo), int(hi) + 1};
+}
+
+bool snap_triangle(const glm::dvec2& s0, const glm::dvec2& s1, const glm::dvec2& s2, int width,
+                   int height, SnappedTriangle& t) {
+  const glm::dvec2 s[3] = {s0, s1, s2};
+  for (int k = 0; k < 3; ++k) {
+    t.x[k] = std::llround(s[k].x * kSubpixelScale);
+    t.y[k] = std::llround(s[k].y * kSubpixelScale);
+    t.source[k] = k;
+  }
+  const int64_t area2 = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.x[2] - t.x[0]) * (t.y[1] - t.y[0]);
+  if (area2 == 0) return false;
+  // With y down, counter-clockwise as seen on screen (y up) gives a negative area.
+  t.front_facing = area2 < 0;
+  if (area2 < 0) {
+    std::swap(t.x[1], t.x[2]);
+    std::swap(t.y[1], t.y[2]);
+    std::swap(t.source[1], t.source[2]);
+  }
+  // Pixel centres px + ½ inside [min, max] of the vertices: px ≥ ceil(min − ½).
+  const int64_t mnx = std::min({t.x[0], t.x[1], t.x[2]}), mxx = std::max({t.x[0], t.x[1], t.x[2]});
+  const int64_t mny = std::min({t.y[0], t.y[1], t.y[2]}), mxy = std::max({t.y[0], t.y[1], t.y[2]});
+  const int64_t half = kSubpixelScale / 2;
+  t.x0 = int(std::max<int64_t>(0, ceil_div(mnx - half, kSubpixelScale)));
+  t.y0 = int(std::max<int64_t>(0, ceil_div(mny - half, kSubpixelScale)));
+  t.x1 = int(std::min<int64_t>(width - 1, floor_div(mxx - half, kSubpixelScale)));
+  t.y1 = int(std::min<int64_t>(height - 1, floor_div(mxy - half, kSubpixelScale)));
+  return t.x0 <= t.x1 && t.y0 <= t.y1;
+}
+
+}  // namespace core

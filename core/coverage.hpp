@@ -1,0 +1,62 @@
+#pragma once
+// The coverage convention, shared by the golden model and the pipeline so that which
+// pixels a triangle covers is never a source of difference between them:
+//
+//  * clip space is OpenGL's; triangles are clipped against the near and far planes
+//    and a guard band |x|, |y| ≤ 8·w (bounds the fixed-point range), in double;
+//  * screen space has x to the right and y down; pixel (px, py) is the square
+//    [px, px+1) × [py, py+1) with its centre at (px + ½, py + ½);
+//  * vertices are snapped to a grid of 1/256 pixel (8 fractional bits), as hardware
+//    does, and edge functions are evaluated exactly in 64-bit integers;
+//  * a pixel is covered when its centre is inside the triangle, or on a top or left
+//    edge (the top-left fill rule), so that triangles sharing an edge cover each pixel
+//    along it exactly once.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace core {
+
+constexpr int kSubpixelBits = 8;
+constexpr int64_t kSubpixelScale = int64_t(1) << kSubpixelBits;
+constexpr double kGuardBand = 8.0;
+
+struct ClipVertex {
+  glm::dvec4 clip;   // clip-space position
+  glm::dvec3 bary;   // its weights on the original triangle's three vertices
+};
+
+// The polygon left of triangle (c0, c1, c2) after clipping: empty, or 3 to 9
+// vertices in the triangle's winding. Fan it as (0, i, i+1).
+std::vector<ClipVertex> clip_triangle(const glm::dvec4& c0, const glm::dvec4& c1,
+                                      const glm::dvec4& c2);
+
+// Clip space → screen: (x, y) in pixels, z = z_ndc.
+glm::dvec3 to_screen(const glm::dvec4& clip, int width, int height);
+
+struct SnappedTriangle {
+  std::array<int64_t, 3> x, y;  // vertices in 1/256 pixel, ordered so that the edge
+                                // functions are positive inside
+  std::array<int, 3> source;    // which input vertex each one is
+  bool front_facing = true;     // counter-clockwise on screen with y up
+  int x0, y0, x1, y1;           // covered pixels lie in [x0, x1] × [y0, y1]
+
+  // Edge function k (edge from vertex k to k+1) at the centre of pixel (px, py).
+  int64_t edge(int k, int px, int py) const;
+  bool covers(int px, int py) const;
+  // The covered pixels of row py: [begin, end), begin == end when none.
+  std::pair<int, int> row_span(int py) const;
+
+ private:
+  bool top_left(int k) const;
+};
+
+// Snaps a screen-space triangle (pixels) for a width × height viewport. Returns false
+// when the snapped triangle has zero area or covers no pixel centre of the viewport's
+// bounding box.
+bool snap_triangle(const glm::dvec2& s0, const glm::dvec2& s1, const glm::dvec2& s2, int width,
+                   int height, SnappedTriangle& out);
+
+}  // namespace core

@@ -1,0 +1,62 @@
+#pragma once
+// A frame as written to EXR: named float channels of one resolution, plus string
+// attributes for the header. Standard channels: R, G, B, A (colour, linear), Z (eye-
+// space depth, +inf where nothing is covered), N.X, N.Y, N.Z (world-space unit normal).
+#include <map>
+#include <string>
+#include <vector>
+
+namespace core {
+
+struct Channel {
+  std::string name;
+  std::vector<float> values;  // row-major, row 0 at the top
+};
+
+struct Frame {
+  int width = 0, height = 0;
+  std::vector<Channel> channels;
+  std::map<std::string, std::string> attributes;  // e.g. "shadetlm:version"
+
+  Frame() = default;
+  Frame(int w, int h) : width(w), height(h) {}
+
+  // Adds a channel filled with `fill`, or returns the existing one.
+  std::vector<float>& add(const std::string& name, float fill = 0.0f);
+  const Channel* find(const std::string& name) const;
+  std::vector<float>& at(const std::string& name);
+  const std::vector<float>& at(const std::string& name) const;
+  size_t pixel_count() const { return size_t(width) * height; }
+};
+
+// Writes a single-part, ZIP-compressed EXR with every channel as 32-bit float and the
+// attributes as string attributes. The file appears only when complete: it is written
+// beside the target and renamed. Throws std::runtime_error naming the path on failure.
+void write_exr(const std::string& path, const Frame& frame);
+// Reads every channel (half and uint are converted to float) and the string attributes.
+// Throws InputError naming the path.
+Frame read_exr(const std::string& path);
+// Writes R, G, B as an 8-bit sRGB PNG (clamped to [0, 1]), also through a rename.
+void write_png_preview(const std::string& path, const Frame& frame);
+
+// Calls write(tmp) with a temporary path beside `path`, then renames it to `path`;
+// removes the temporary file if write throws.
+template <class F>
+void write_atomically(const std::string& path, F write);
+void rename_into_place(const std::string& tmp, const std::string& path);
+std::string temporary_path_for(const std::string& path);
+void remove_quietly(const std::string& path);
+
+template <class F>
+void write_atomically(const std::string& path, F write) {
+  const std::string tmp = temporary_path_for(path);
+  try {
+    write(tmp);
+  } catch (...) {
+    remove_quietly(tmp);
+    throw;
+  }
+  rename_into_place(tmp, path);
+}
+
+}  // namespace core

@@ -1,0 +1,63 @@
+#include "core/mesh_io.hpp"
+
+#include <cmath>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include "core/input_error.hpp"
+
+namespace core {
+
+Mesh load_mesh_file(const std::string& path) {
+  Assimp::Importer importer;
+  // Points and lines are not shaded: drop them.
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const aiScene* scene = importer.ReadFile(
+      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
+                aiProcess_CalcTangentSpace | aiProcess_PreTransformVertices |
+                aiProcess_SortByPType | aiProcess_FindDegenerates | aiProcess_FindInvalidData);
+  if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
+    throw InputError(path, "", std::string("cannot load the mesh: ") + importer.GetErrorString());
+
+  Mesh out;
+  for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
+    const aiMesh* m = scene->mMeshes[mi];
+    if (!(m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    const uint32_t base = static_cast<uint32_t>(out.vertex_count());
+    for (unsigned v = 0; v < m->mNumVertices; ++v) {
+      glm::dvec3 p(m->mVertices[v].x, m->mVertices[v].y, m->mVertices[v].z);
+      glm::dvec3 n = m->HasNormals()
+                         ? glm::dvec3(m->mNormals[v].x, m->mNormals[v].y, m->mNormals[v].z)
+                         : glm::dvec3(0, 0, 1);
+      if (!(glm::length(n) > 0)) n = glm::dvec3(0, 0, 1);  // a lone vertex has no normal
+      n = glm::normalize(n);
+      glm::dvec2 uv(0, 0);
+      if (m->HasTextureCoords(0)) uv = {m->mTextureCoords[0][v].x, m->mTextureCoords[0][v].y};
+      glm::dvec4 t(any_tangent(n), 1.0);
+      if (m->HasTangentsAndBitangents()) {
+        glm::dvec3 tu(m->mTangents[v].x, m->mTangents[v].y, m->mTangents[v].z);
+        glm::dvec3 bv(m->mBitangents[v].x, m->mBitangents[v].y, m->mBitangents[v].z);
+        tu -= n * glm::dot(n, tu);  // Gram-Schmidt against the normal
+        if (glm::length(tu) > 1e-12 && std::isfinite(glm::length(tu))) {
+          tu = glm::normalize(tu);
+          t = glm::dvec4(tu, glm::dot(glm::cross(n, tu), bv) < 0 ? -1.0 : 1.0);
+        }
+      }
+      out.add(p, n, t, uv);
+    }
+    for (unsigned f = 0; f < m->mNumFaces; ++f) {
+      const aiFace& face = m->mFaces[f];
+      if (face.mNumIndices != 3) continue;
+      out.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
+    }
+  }
+  for (const auto& p : out.positions)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw InputError(path, "", "a vertex position is NaN or infinite");
+  if (out.triangles.empty()) throw InputError(path, "", "the file holds no triangles");
+  return out;
+}
+
+}  // namespace core

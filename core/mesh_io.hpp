@@ -1,0 +1,14 @@
+#pragma once
+#include <string>
+
+#include "core/mesh.hpp"
+
+namespace core {
+
+// Loads every triangle of a mesh file through assimp (OBJ, PLY, glTF, 3DS, STL, …),
+// with the node transforms applied, into one mesh. Normals are generated where the
+// file has none (smooth), tangents from the uv parameterization where it has none.
+// Throws InputError naming the file.
+Mesh load_mesh_file(const std::string& path);
+
+}  // namespace core

@@ -1,0 +1,110 @@
+#include "core/pipeline_config.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/input_error.hpp"
+
+namespace core {
+
+using json = nlohmann::json;
+
+const std::vector<SettingSpec>& pipeline_settings() {
+  // Read by the SystemC pipeline (`shadetlm render`); the golden model reads none of
+  // them. docs/configuration.md documents each one (a test checks that it does).
+  static const std::vector<SettingSpec> table = {
+      {"clock_mhz", 500.0, {}, 1, 100000, "clock of every block, for simulated time"},
+      {"number_format", "float32", {"float32"}, 0, 0, "arithmetic of the datapaths"},
+      {"normal_interp.mode", "perspective", {"affine", "perspective"}, 0, 0,
+       "constant increments of N (affine) or of N/w and 1/w (perspective)"},
+      {"normalize.mode", "exact", {"exact", "forward-difference", "rsqrt0", "rsqrt1", "rsqrt2"},
+       0, 0, "how the normal is normalized"},
+  };
+  return table;
+}
+
+namespace {
+const SettingSpec* find_spec(const std::string& key) {
+  for (const auto& s : pipeline_settings())
+    if (s.key == key) return &s;
+  return nullptr;
+}
+
+// Flattens nested objects into dotted keys: {"normalize": {"mode": x}} → normalize.mode.
+void flatten(const json& j, const std::string& prefix, std::map<std::string, json>& out) {
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
+    if (it->is_object() && !find_spec(key))
+      flatten(*it, key, out);
+    else
+      out[key] = *it;
+  }
+}
+}  // namespace
+
+PipelineConfig PipelineConfig::from_json(const json& section, const std::string& file) {
+  PipelineConfig c;
+  if (!section.is_null() && !section.is_object())
+    throw InputError(file, "pipeline", "expected an object");
+  std::map<std::string, json> given;
+  if (section.is_object()) flatten(section, "", given);
+  for (const auto& [key, value] : given) {
+    const SettingSpec* spec = find_spec(key);
+    const std::string field = "pipeline." + key;
+    if (!spec) {
+      std::string known;
+      for (const auto& s : pipeline_settings()) known += (known.empty() ? "" : ", ") + s.key;
+      throw InputError(file, field, "unknown setting (known: " + known + ")");
+    }
+    if (spec->fallback.is_string()) {
+      if (!value.is_string()) throw InputError(file, field, "expected a string");
+      bool ok = spec->choices.empty();
+      for (const auto& ch : spec->choices) ok = ok || ch == value.get<std::string>();
+      if (!ok) {
+        std::string list;
+        for (const auto& ch : spec->choices) list += (list.empty() ? "" : ", ") + ch;
+        throw InputError(file, field,
+                         "unknown value \"" + value.get<std::string>() + "\" (one of: " + list + ")");
+      }
+    } else if (spec->fallback.is_boolean()) {
+      if (!value.is_boolean()) throw InputError(file, field, "expected true or false");
+    } else if (spec->fallback.is_number_integer()) {
+      if (!value.is_number_integer()) throw InputError(file, field, "expected an integer");
+    } else if (spec->fallback.is_number()) {
+      if (!value.is_number()) throw InputError(file, field, "expected a number");
+      if (!std::isfinite(value.get<double>())) throw InputError(file, field, "must be finite");
+    }
+    if (value.is_number() && spec->min < spec->max &&
+        (value.get<double>() < spec->min || value.get<double>() > spec->max))
+      throw InputError(file, field,
+                       "must lie in [" + json(spec->min).dump() + ", " + json(spec->max).dump() + "]");
+    c.values_[key] = value;
+  }
+  for (const auto& s : pipeline_settings())
+    if (!c.values_.count(s.key)) c.values_[s.key] = s.fallback;
+  for (const auto& [k, v] : c.values_)
+    if (v.is_string()) c.strings_[k] = v.get<std::string>();
+  return c;
+}
+
+const json& PipelineConfig::get(const std::string& key) const {
+  auto it = values_.find(key);
+  if (it == values_.end()) throw std::logic_error("undeclared pipeline setting: " + key);
+  return it->second;
+}
+
+double PipelineConfig::number(const std::string& key) const { return get(key).get<double>(); }
+int PipelineConfig::integer(const std::string& key) const { return get(key).get<int>(); }
+bool PipelineConfig::boolean(const std::string& key) const { return get(key).get<bool>(); }
+const std::string& PipelineConfig::string(const std::string& key) const {
+  get(key);
+  return strings_.at(key);
+}
+
+json PipelineConfig::resolved() const {
+  json out = json::object();
+  for (const auto& [k, v] : values_) out[k] = v;
+  return out;
+}
+
+}  // namespace core

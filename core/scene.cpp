@@ -1,0 +1,357 @@
+#include "core/scene.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/json_reader.hpp"
+#include "core/mesh_io.hpp"
+
+namespace core {
+
+namespace fs = std::filesystem;
+
+const char* to_string(ShadingPath p) {
+  switch (p) {
+    case ShadingPath::Phong: return "phong";
+  }
+  return "?";
+}
+
+// ---------------------------------------------------------------- camera
+
+glm::dvec3 Camera::forward() const { return glm::normalize(target - position); }
+glm::dvec3 Camera::right() const { return glm::normalize(glm::cross(forward(), up)); }
+glm::dvec3 Camera::true_up() const { return glm::cross(right(), forward()); }
+
+glm::dmat4 Camera::view() const { return glm::lookAtRH(position, target, up); }
+
+glm::dmat4 Camera::projection() const {
+  return glm::perspectiveRH_NO(glm::radians(fov_y_deg), double(width) / height, near, far);
+}
+
+// ---------------------------------------------------------------- world space
+
+Mesh to_world(const Object& object) {
+  const glm::dmat3 m3(object.model);
+  const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(m3));
+  const double handedness = glm::determinant(m3) < 0 ? -1.0 : 1.0;
+  Mesh w;
+  w.positions.reserve(object.mesh.vertex_count());
+  for (size_t i = 0; i < object.mesh.vertex_count(); ++i) {
+    glm::dvec3 p = glm::dvec3(object.model * glm::dvec4(object.mesh.positions[i], 1.0));
+    glm::dvec3 n = glm::normalize(normal_matrix * object.mesh.normals[i]);
+    glm::dvec4 t4 = object.mesh.tangents[i];
+    glm::dvec3 t = m3 * glm::dvec3(t4);
+    t -= n * glm::dot(n, t);
+    t = glm::length(t) > 1e-12 ? glm::normalize(t) : any_tangent(n);
+    w.add(p, n, glm::dvec4(t, t4.w * handedness), object.mesh.uvs[i]);
+  }
+  w.triangles = object.mesh.triangles;
+  // A mirroring transform turns counter-clockwise triangles clockwise: restore the
+  // winding so that the front stays where the normals point.
+  if (handedness < 0)
+    for (auto& tri : w.triangles) std::swap(tri.y, tri.z);
+  return w;
+}
+
+// ---------------------------------------------------------------- overrides
+
+void apply_override(json& doc, const std::string& assignment, const std::string& file) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError(file, assignment, "expected key=value");
+  const std::string key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  json value;
+  try {
+    value = json::parse(text);
+  } catch (const json::parse_error&) {
+    value = text;  // not JSON: a bare string such as `exact`
+  }
+  json* node = &doc;
+  std::string walked;
+  size_t start = 0;
+  while (true) {
+    const size_t dot = key.find('.', start);
+    const std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (part.empty()) throw InputError(file, key, "empty component in the key");
+    walked += (walked.empty() ? "" : ".") + part;
+    json* next = nullptr;
+    if (node->is_array()) {
+      char* end = nullptr;
+      unsigned long index = std::strtoul(part.c_str(), &end, 10);
+      if (*end != '\0' || index >= node->size())
+        throw InputError(file, walked,
+                         "no such element (the array has " + std::to_string(node->size()) + ")");
+      next = &(*node)[index];
+    } else {
+      if (node->is_null()) *node = json::object();
+      if (!node->is_object())
+        throw InputError(file, walked, "cannot set a member of a value that is not an object");
+      next = &(*node)[part];
+    }
+    if (dot == std::string::npos) {
+      *next = value;
+      return;
+    }
+    node = next;
+    start = dot + 1;
+  }
+}
+
+// ---------------------------------------------------------------- loading
+
+namespace {
+
+glm::dmat4 read_transform(JsonReader r) {
+  glm::dvec3 translate = r.vec3("translate", glm::dvec3(0));
+  glm::dvec3 rotate = r.vec3("rotate", glm::dvec3(0));
+  glm::dvec3 scale(1);
+  if (r.has("scale") && r.raw("scale").is_number())
+    scale = glm::dvec3(r.number("scale"));
+  else
+    scale = r.vec3("scale", glm::dvec3(1));
+  if (scale.x == 0 || scale.y == 0 || scale.z == 0) r.fail("scale", "a scale of 0 flattens the object");
+  r.finish();
+  // M = T · Rz · Ry · Rx · S: scale first, then rotate about x, y, z, then translate.
+  glm::dmat4 m = glm::translate(glm::dmat4(1), translate);
+  m = glm::rotate(m, glm::radians(rotate.z), glm::dvec3(0, 0, 1));
+  m = glm::rotate(m, glm::radians(rotate.y), glm::dvec3(0, 1, 0));
+  m = glm::rotate(m, glm::radians(rotate.x), glm::dvec3(1, 0, 0));
+  return glm::scale(m, scale);
+}
+
+glm::dvec3 color(JsonReader& r, const std::string& key, glm::dvec3 fallback) {
+  glm::dvec3 c = r.vec3(key, fallback);
+  if (c.x < 0 || c.y < 0 || c.z < 0) r.fail(key, "colours cannot be negative");
+  return c;
+}
+
+std::string resolve(const std::string& base_dir, const std::string& path) {
+  fs::path p(path);
+  return p.is_absolute() ? path : (fs::path(base_dir) / p).lexically_normal().string();
+}
+
+Texture read_texture(JsonReader r, const std::string& name, const std::string& base_dir) {
+  const std::string type = r.choice(
+      "type", std::nullopt,
+      {"image", "checker", "bricks", "tiles", "value-noise", "gradient-noise", "ridges", "steps"});
+  Texture t;
+  if (type == "image") {
+    const std::string file = resolve(base_dir, r.string("file"));
+    if (!fs::exists(file)) r.fail("file", "no such file: " + file);
+    t = load_texture_file(file);
+    if (r.has("colorspace")) t.srgb = r.choice("colorspace", std::nullopt, {"srgb", "linear"}) == "srgb";
+  } else {
+    ProceduralParams p;
+    p.size = r.ivec2("size", glm::ivec2(256, 256), 1, 16384);
+    if (r.has("cells") && r.raw("cells").is_number_integer())
+      p.cells = glm::ivec2(r.integer("cells", std::nullopt, 1, 4096));
+    else
+      p.cells = r.ivec2("cells", glm::ivec2(8, 8), 1, 4096);
+    p.octaves = r.integer("octaves", 1, 1, 12);
+    p.levels = r.integer("levels", 4, 1, 1024);
+    p.gap = r.number("gap", 0.05, 0, 0.5);
+    p.seed = static_cast<uint32_t>(r.integer("seed", 1, 0, 2147483647));
+    if (r.has("colors")) {
+      auto colors = r.vec3_list("colors", 2);
+      p.color_a = colors[0];
+      p.color_b = colors[1];
+    }
+    if (type == "checker") t = make_checker(p);
+    else if (type == "bricks") t = make_bricks(p);
+    else if (type == "tiles") t = make_tiles(p);
+    else if (type == "value-noise") t = make_value_noise(p);
+    else if (type == "gradient-noise") t = make_gradient_noise(p);
+    else if (type == "ridges") t = make_ridges(p);
+    else t = make_steps(p);
+  }
+  t.name = name;
+  t.wrap = r.choice("wrap", std::string("repeat"), {"repeat", "clamp"}) == "repeat" ? Wrap::Repeat : Wrap::Clamp;
+  r.finish();
+  return t;
+}
+
+Mesh read_shape(JsonReader& r, const std::string& shape, const std::string& base_dir) {
+  if (shape == "plane")
+    return make_plane(r.vec2("size", glm::dvec2(2, 2)), r.ivec2("tessellation", glm::ivec2(1, 1), 1, 4096));
+  if (shape == "sphere")
+    return make_sphere(r.number("radius", 1.0, 1e-9, 1e9), r.integer("segments", 48, 3, 4096),
+                       r.integer("rings", 24, 2, 4096));
+  if (shape == "torus") {
+    double major = r.number("major_radius", 1.0, 1e-9, 1e9);
+    double minor = r.number("minor_radius", 0.35, 1e-9, 1e9);
+    if (minor >= major) r.fail("minor_radius", "must be smaller than major_radius");
+    return make_torus(major, minor, r.integer("segments", 48, 3, 4096), r.integer("sides", 24, 3, 4096));
+  }
+  if (shape == "cube") return make_cube(r.number("size", 1.0, 1e-9, 1e9));
+  const std::string file = resolve(base_dir, r.string("file"));
+  if (!fs::exists(file)) r.fail("file", "no such file: " + file);
+  try {
+    return load_mesh_file(file);
+  } catch (const InputError& e) {
+    r.fail("file", e.what());
+  }
+}
+
+void check_camera(JsonReader& r, const Camera& c) {
+  const glm::dvec3 f = c.target - c.position;
+  if (glm::length(f) < 1e-12) r.fail("target", "the camera's target equals its position");
+  if (glm::length(c.up) < 1e-12) r.fail("up", "the up vector is zero");
+  if (glm::length(glm::cross(glm::normalize(f), glm::normalize(c.up))) < 1e-9)
+    r.fail("up", "the up vector is parallel to the viewing direction");
+  if (c.far <= c.near) r.fail("far", "must be greater than near");
+}
+
+}  // namespace
+
+Scene load_scene_text(const std::string& text, const std::string& name, const std::string& base_dir,
+                      const std::vector<std::string>& overrides) {
+  json doc = parse_json_text(text, name);
+  for (const auto& o : overrides) apply_override(doc, o, "--set " + o);
+
+  Scene s;
+  s.file = name;
+  s.source = doc;
+  JsonReader root(doc, name, "");
+  if (root.integer("format", 1, 1, 1) != 1) root.fail("format", "unsupported");
+
+  {
+    JsonReader r = root.object("camera");
+    Camera& c = s.camera;
+    c.position = r.vec3("position");
+    c.target = r.vec3("target");
+    c.up = r.vec3("up", glm::dvec3(0, 1, 0));
+    c.fov_y_deg = r.number("fov_y", 45.0, 1e-3, 179.0);
+    glm::ivec2 res = r.ivec2("resolution", std::nullopt, 1, 16384);
+    c.width = res.x;
+    c.height = res.y;
+    c.near = r.number("near", 0.1, 1e-9, 1e12);
+    c.far = r.number("far", 1000.0, 1e-9, 1e12);
+    c.local_viewer = r.boolean("local_viewer", true);
+    check_camera(r, c);
+    r.finish();
+  }
+
+  s.ambient = color(root, "ambient", glm::dvec3(0));
+  s.background = color(root, "background", glm::dvec3(0));
+
+  if (root.has("lights"))
+    for (const auto& [value, path] : root.array("lights")) {
+      JsonReader r(*value, name, path);
+      Light l;
+      l.type = r.choice("type", std::nullopt, {"directional", "point"}) == "point" ? Light::Type::Point
+                                                                                : Light::Type::Directional;
+      if (l.type == Light::Type::Directional) {
+        glm::dvec3 d = r.vec3("direction");
+        if (glm::length(d) < 1e-12) r.fail("direction", "the direction is zero");
+        l.direction = glm::normalize(d);
+      } else {
+        l.position = r.vec3("position");
+      }
+      l.color = color(r, "color", glm::dvec3(1));
+      l.intensity = r.number("intensity", 1.0, 0, 1e12);
+      r.finish();
+      s.lights.push_back(l);
+    }
+
+  std::map<std::string, int> texture_index;
+  if (root.has("textures")) {
+    JsonReader r = root.object("textures");
+    for (auto it = doc["textures"].begin(); it != doc["textures"].end(); ++it) {
+      texture_index[it.key()] = static_cast<int>(s.textures.size());
+      s.textures.push_back(read_texture(r.object(it.key()), it.key(), base_dir));
+    }
+    r.finish();
+  }
+
+  std::map<std::string, int> material_index;
+  std::map<int, int> decoded;  // sRGB texture → its linear copy, made once
+  auto texture_ref = [&](JsonReader& r, const std::string& key, bool colour) {
+    if (!r.has(key)) return -1;
+    std::string tn = r.string(key);
+    auto it = texture_index.find(tn);
+    if (it == texture_index.end()) r.fail(key, "no texture named \"" + tn + "\" in textures");
+    if (colour && s.textures[it->second].srgb) {
+      // A colour texture is used decoded to linear; a height map reads stored values.
+      auto [d, fresh] = decoded.emplace(it->second, static_cast<int>(s.textures.size()));
+      if (fresh) s.textures.push_back(decode_srgb(s.textures[it->second]));
+      return d->second;
+    }
+    return it->second;
+  };
+  if (root.has("materials")) {
+    JsonReader all = root.object("materials");
+    for (auto it = doc["materials"].begin(); it != doc["materials"].end(); ++it) {
+      JsonReader r = all.object(it.key());
+      Material m;
+      m.name = it.key();
+      m.ambient = color(r, "ambient", m.ambient);
+      m.diffuse = color(r, "diffuse", m.diffuse);
+      m.specular = color(r, "specular", m.specular);
+      m.shininess = r.number("shininess", m.shininess, 0, 1e6);
+      m.texture = texture_ref(r, "texture", true);
+      m.height_map = texture_ref(r, "height_map", false);
+      m.height_scale = r.number("height_scale", 0.0, 0, 1e6);
+      if (r.has("height_scale") && m.height_map < 0)
+        r.fail("height_scale", "given without a height_map");
+      r.choice("path", std::string("phong"), {"phong"});
+      m.path = ShadingPath::Phong;
+      r.finish();
+      material_index[m.name] = static_cast<int>(s.materials.size());
+      s.materials.push_back(m);
+    }
+    all.finish();
+  }
+
+  for (const auto& [value, path] : root.array("objects")) {
+    JsonReader r(*value, name, path);
+    Object o;
+    const std::string shape = r.choice("shape", std::nullopt, {"plane", "sphere", "torus", "cube", "mesh"});
+    o.name = r.string("name", shape + std::to_string(s.objects.size()));
+    o.mesh = read_shape(r, shape, base_dir);
+    if (r.has("material")) {
+      std::string mn = r.string("material");
+      auto it = material_index.find(mn);
+      if (it == material_index.end()) r.fail("material", "no material named \"" + mn + "\" in materials");
+      o.material = it->second;
+    } else {
+      if (!material_index.count("default")) {  // the built-in grey
+        material_index["default"] = static_cast<int>(s.materials.size());
+        Material m;
+        m.name = "default";
+        s.materials.push_back(m);
+      }
+      o.material = material_index["default"];
+    }
+    if (r.has("transform")) o.model = read_transform(r.object("transform"));
+    o.cull_back = r.choice("cull", std::string("none"), {"none", "back"}) == "back";
+    r.finish();
+    s.objects.push_back(std::move(o));
+  }
+
+  json pipeline = root.has("pipeline") ? root.raw("pipeline") : json();
+  s.pipeline = PipelineConfig::from_json(pipeline, name);
+  root.finish();
+  return s;
+}
+
+Scene load_scene(const std::string& file, const std::vector<std::string>& overrides) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file, "", "cannot open the scene file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string dir = fs::path(file).parent_path().string();
+  return load_scene_text(ss.str(), file, dir.empty() ? "." : dir, overrides);
+}
+
+Scene load_demo_scene(const std::vector<std::string>& overrides) {
+  return load_scene_text(demo_scene_text(), "<built-in demo>", ".", overrides);
+}
+
+}  // namespace core

@@ -1,0 +1,101 @@
+#pragma once
+// The scene: camera, lights, materials, textures and objects, read from scene format
+// v1 (docs/scene-format.md). Everything downstream — the golden model and the
+// pipeline — starts from this one description.
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/mesh.hpp"
+#include "core/pipeline_config.hpp"
+#include "core/texture.hpp"
+
+namespace core {
+
+struct Camera {
+  glm::dvec3 position{0, 0, 5}, target{0, 0, 0}, up{0, 1, 0};
+  double fov_y_deg = 45;
+  int width = 640, height = 480;
+  double near = 0.1, far = 100;
+  // A local viewer sees each point from the camera position; a viewer at infinity
+  // sees every point along the camera's forward axis (V constant over the frame).
+  bool local_viewer = true;
+
+  glm::dvec3 forward() const;  // unit, from the position towards the target
+  glm::dvec3 right() const;    // unit, to the right of the image
+  glm::dvec3 true_up() const;  // unit, towards the top of the image
+  glm::dmat4 view() const;     // world → eye (right-handed, looking down −z)
+  glm::dmat4 projection() const;  // eye → clip (OpenGL-style, z_ndc in [−1, 1])
+};
+
+struct Light {
+  enum class Type { Directional, Point };
+  Type type = Type::Directional;
+  glm::dvec3 direction{0, 0, -1};  // directional: the unit direction the light travels
+  glm::dvec3 position{0, 0, 0};    // point
+  glm::dvec3 color{1, 1, 1};
+  double intensity = 1;
+  glm::dvec3 radiance() const { return color * intensity; }
+};
+
+// Shading paths a material can select. The bump, parallax and texturing issues add
+// theirs here.
+enum class ShadingPath { Phong };
+const char* to_string(ShadingPath p);
+
+struct Material {
+  std::string name;
+  glm::dvec3 ambient{0.1, 0.1, 0.1}, diffuse{0.8, 0.8, 0.8}, specular{0.2, 0.2, 0.2};
+  double shininess = 32;
+  int texture = -1;       // colour texture modulating ambient and diffuse; -1 none
+  int height_map = -1;    // height map (first channel); -1 none
+  double height_scale = 0;
+  ShadingPath path = ShadingPath::Phong;
+};
+
+struct Object {
+  std::string name;
+  Mesh mesh;              // in object space
+  glm::dmat4 model{1.0};  // object → world
+  int material = 0;
+  bool cull_back = false;  // drop triangles facing away from the camera
+};
+
+struct Scene {
+  std::string file;  // where it was read from ("<built-in demo>" for the demo)
+  nlohmann::json source;  // the scene JSON after --set overrides
+  Camera camera;
+  glm::dvec3 ambient{0, 0, 0};
+  glm::dvec3 background{0, 0, 0};
+  std::vector<Light> lights;
+  std::vector<Texture> textures;  // colour textures are stored decoded to linear
+  std::vector<Material> materials;
+  std::vector<Object> objects;
+  PipelineConfig pipeline;
+};
+
+// An object's mesh in world space: positions by the model matrix, normals by its
+// inverse transpose, tangents by the model matrix; normals and tangents renormalized
+// per vertex (and the tangent made orthogonal to the normal). This is the scene's
+// definition of its vertices, shared by the golden model and the pipeline.
+Mesh to_world(const Object& object);
+
+// Loads a scene file; `overrides` are "key=value" strings applied to the JSON first
+// (dotted keys, numeric array indices: "lights.0.intensity=2"). Throws InputError.
+Scene load_scene(const std::string& file, const std::vector<std::string>& overrides = {});
+// Reads a scene from JSON text; relative paths resolve against `base_dir`.
+Scene load_scene_text(const std::string& text, const std::string& name,
+                      const std::string& base_dir,
+                      const std::vector<std::string>& overrides = {});
+// The built-in demo scene (scenes/demo.json, compiled in).
+Scene load_demo_scene(const std::vector<std::string>& overrides = {});
+const std::string& demo_scene_text();
+
+// Applies one "key=value" override to a JSON document. The value is read as JSON
+// when it parses as JSON, else as a string.
+void apply_override(nlohmann::json& doc, const std::string& assignment,
+                    const std::string& file);
+
+}  // namespace core

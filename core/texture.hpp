@@ -1,0 +1,53 @@
+#pragma once
+// Textures and the texture-addressing convention that the golden model and the
+// pipeline share: texel (x, y) has its centre at u = (x + ½)/W, v = 1 − (y + ½)/H;
+// row 0 is the top of the image (v = 1), as in image files.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace core {
+
+enum class Wrap { Repeat, Clamp };
+
+struct Texture {
+  std::string name;
+  int width = 0, height = 0;
+  std::vector<glm::vec4> texels;  // row-major, row 0 at the top
+  Wrap wrap = Wrap::Repeat;
+  bool srgb = false;  // the stored values are sRGB-encoded colours
+
+  glm::dvec4 texel(int x, int y) const;      // with the wrap mode applied
+  glm::dvec4 bilinear(glm::dvec2 uv) const;  // of the stored (finest) level
+};
+
+double srgb_to_linear(double c);
+double linear_to_srgb(double c);
+// The texture with its colour channels decoded to linear (alpha untouched).
+Texture decode_srgb(const Texture& t);
+
+// Procedural textures for tests and demos. All are periodic over [0,1]², so they tile
+// seamlessly under Wrap::Repeat. Noise values lie in [0, 1].
+struct ProceduralParams {
+  glm::ivec2 size{256, 256};
+  glm::ivec2 cells{8, 8};   // checks, bricks, tiles, or noise lattice cells
+  int octaves = 1;
+  int levels = 4;           // steps: number of height levels
+  double gap = 0.05;        // bricks, tiles: mortar / grout width as a share of a cell
+  uint32_t seed = 1;
+  glm::dvec3 color_a{1, 1, 1}, color_b{0, 0, 0};
+};
+Texture make_checker(const ProceduralParams& p);
+Texture make_bricks(const ProceduralParams& p);        // color_a bricks, color_b mortar
+Texture make_tiles(const ProceduralParams& p);         // tiles of varying shade of color_a
+Texture make_value_noise(const ProceduralParams& p);   // mix(color_b, color_a, noise)
+Texture make_gradient_noise(const ProceduralParams& p);
+Texture make_ridges(const ProceduralParams& p);        // sharp crests: 1 − |gradient noise|
+Texture make_steps(const ProceduralParams& p);         // value noise quantized to `levels`
+
+// Image files: PNG (8 or 16 bit, through stb) and EXR (any of R, G, B, A, Y).
+Texture load_texture_file(const std::string& path);
+
+}  // namespace core

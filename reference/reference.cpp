@@ -1,0 +1,119 @@
+#include "reference/reference.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "core/coverage.hpp"
+
+namespace reference {
+
+glm::dvec3 shade(const core::Scene& scene, const core::Material& m, const glm::dvec3& P,
+                 const glm::dvec3& N, const glm::dvec2& uv) {
+  const core::Camera& cam = scene.camera;
+  const glm::dvec3 tex = m.texture >= 0 ? glm::dvec3(scene.textures[m.texture].bilinear(uv)) : glm::dvec3(1);
+  const glm::dvec3 V = cam.local_viewer ? glm::normalize(cam.position - P) : -cam.forward();
+  glm::dvec3 c = scene.ambient * m.ambient * tex;
+  for (const core::Light& light : scene.lights) {
+    glm::dvec3 L;
+    if (light.type == core::Light::Type::Directional) {
+      L = -light.direction;
+    } else {
+      const glm::dvec3 d = light.position - P;
+      if (glm::length(d) == 0) continue;  // a light on the surface lights no direction
+      L = glm::normalize(d);
+    }
+    const double n_dot_l = glm::dot(N, L);
+    if (n_dot_l <= 0) continue;  // the light is behind the surface: no diffuse, no highlight
+    double highlight = 0;
+    const glm::dvec3 h = L + V;
+    if (glm::length(h) > 0) {
+      const double n_dot_h = glm::dot(N, glm::normalize(h));
+      if (n_dot_h > 0) highlight = std::pow(n_dot_h, m.shininess);
+    }
+    c += light.radiance() * (m.diffuse * tex * n_dot_l + m.specular * highlight);
+  }
+  return c;
+}
+
+Image render(const core::Scene& scene) {
+  const core::Camera& cam = scene.camera;
+  Image img;
+  img.width = cam.width;
+  img.height = cam.height;
+  const size_t n = size_t(img.width) * img.height;
+  img.color.assign(n, scene.background);
+  img.alpha.assign(n, 0.0);
+  img.depth.assign(n, std::numeric_limits<double>::infinity());
+  img.normal.assign(n, glm::dvec3(0));
+
+  const glm::dmat4 view_projection = cam.projection() * cam.view();
+  // The ray through a pixel centre: eye + t·dir with dir·forward = 1, so that t is the
+  // eye-space depth of the point it reaches.
+  const double tan_half = std::tan(glm::radians(cam.fov_y_deg) / 2);
+  const double aspect = double(cam.width) / cam.height;
+  const glm::dvec3 eye = cam.position, fwd = cam.forward(), right = cam.right(), up = cam.true_up();
+
+  for (const core::Object& object : scene.objects) {
+    const core::Mesh mesh = core::to_world(object);
+    const core::Material& material = scene.materials[object.material];
+    for (const auto& tri : mesh.triangles) {
+      const glm::dvec3 P[3] = {mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]};
+      const glm::dvec3 Ng = glm::cross(P[1] - P[0], P[2] - P[0]);
+      const double Ng2 = glm::dot(Ng, Ng);
+      if (!(Ng2 > 0)) continue;
+      const auto poly = core::clip_triangle(view_projection * glm::dvec4(P[0], 1),
+                                            view_projection * glm::dvec4(P[1], 1),
+                                            view_projection * glm::dvec4(P[2], 1));
+      for (size_t k = 1; k + 1 < poly.size(); ++k) {
+        core::SnappedTriangle st;
+        if (!core::snap_triangle(core::to_screen(poly[0].clip, img.width, img.height),
+                                 core::to_screen(poly[k].clip, img.width, img.height),
+                                 core::to_screen(poly[k + 1].clip, img.width, img.height),
+                                 img.width, img.height, st))
+          continue;
+        if (object.cull_back && !st.front_facing) continue;
+        for (int py = st.y0; py <= st.y1; ++py) {
+          const auto [x_begin, x_end] = st.row_span(py);
+          for (int px = x_begin; px < x_end; ++px) {
+            const double sx = (px + 0.5) / img.width * 2 - 1, sy = 1 - (py + 0.5) / img.height * 2;
+            const glm::dvec3 dir = fwd + right * (sx * tan_half * aspect) + up * (sy * tan_half);
+            const double denom = glm::dot(dir, Ng);
+            if (denom == 0) continue;  // the ray runs inside the triangle's plane
+            const double t = glm::dot(P[0] - eye, Ng) / denom;
+            const size_t i = img.index(px, py);
+            if (!(t < img.depth[i])) continue;
+            const glm::dvec3 X = eye + dir * t;
+            // Barycentric coordinates of X: sub-triangle areas over the whole.
+            const double b0 = glm::dot(glm::cross(P[1] - X, P[2] - X), Ng) / Ng2;
+            const double b1 = glm::dot(glm::cross(P[2] - X, P[0] - X), Ng) / Ng2;
+            const double b2 = 1 - b0 - b1;
+            const glm::dvec3 N = glm::normalize(b0 * mesh.normals[tri.x] + b1 * mesh.normals[tri.y] +
+                                                b2 * mesh.normals[tri.z]);
+            const glm::dvec2 uv = b0 * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
+            img.depth[i] = t;
+            img.alpha[i] = 1;
+            img.normal[i] = N;
+            img.color[i] = shade(scene, material, X, N, uv);
+          }
+        }
+      }
+    }
+  }
+  return img;
+}
+
+core::Frame to_frame(const Image& img) {
+  core::Frame f(img.width, img.height);
+  const char* names[] = {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z"};
+  std::vector<float>* ch[8];
+  for (int k = 0; k < 8; ++k) ch[k] = &f.add(names[k]);
+  for (size_t i = 0; i < f.pixel_count(); ++i) {
+    for (int k = 0; k < 3; ++k) (*ch[k])[i] = float(img.color[i][k]);
+    (*ch[3])[i] = float(img.alpha[i]);
+    (*ch[4])[i] = float(img.depth[i]);
+    for (int k = 0; k < 3; ++k) (*ch[5 + k])[i] = float(img.normal[i][k]);
+  }
+  return f;
+}
+
+}  // namespace reference

@@ -1,0 +1,40 @@
+#pragma once
+// The golden model: the exact answer the pipeline is measured against. Plain C++,
+// double precision, no SystemC, and it never calls a pipeline kernel. It shares with
+// the pipeline only conventions (the scene, core/coverage.hpp, texture addressing):
+//
+//  * coverage: core/coverage.hpp (clipping, 1/256-pixel snapping, top-left rule);
+//  * visibility: a depth buffer of eye-space depth, nearer wins, ties keep the first;
+//  * interpolation: the ray through the pixel centre meets the (unsnapped) triangle's
+//    plane; the barycentric coordinates of that point are exactly the
+//    perspective-correct ones;
+//  * the normal is the barycentric mix of the vertex normals, normalized exactly;
+//  * Blinn-Phong with every light (docs/shading-model.md).
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/frame.hpp"
+#include "core/scene.hpp"
+
+namespace reference {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<glm::dvec3> color;   // linear RGB; the background where nothing is covered
+  std::vector<double> alpha;       // 1 covered, 0 not
+  std::vector<double> depth;       // eye-space depth; +inf where nothing is covered
+  std::vector<glm::dvec3> normal;  // world-space unit normal; 0 where nothing is covered
+  size_t index(int x, int y) const { return size_t(y) * width + x; }
+};
+
+// Blinn-Phong at world point P with unit normal N and texture coordinates uv.
+glm::dvec3 shade(const core::Scene& scene, const core::Material& material, const glm::dvec3& P,
+                 const glm::dvec3& N, const glm::dvec2& uv);
+
+Image render(const core::Scene& scene);
+
+// The image as an EXR frame (float channels R, G, B, A, Z, N.X, N.Y, N.Z).
+core::Frame to_frame(const Image& image);
+
+}  // namespace reference
