@@ -220,6 +220,10 @@ json parse_json_text(const std::string& text, const std::string& file) {
     auto pos = what.find("syntax error");
     throw InputError(file, "line " + std::to_string(line) + ", column " + std::to_string(col),
                      "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
+  } catch (const json::exception& e) {  // e.g. a number literal too large for a double
+    std::string what = e.what();
+    auto pos = what.find("] ");
+    throw InputError(file, "", "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos + 2)));
   }
 }
 

@@ -23,12 +23,12 @@ glm::dvec3 any_tangent(glm::dvec3 n) {
   return glm::normalize(t);
 }
 
-Mesh make_plane(glm::dvec2 size, glm::ivec2 tess) {
+Mesh make_plane(glm::dvec2 size, glm::ivec2 tess, glm::dvec2 uv_repeat) {
   Mesh m;
   for (int j = 0; j <= tess.y; ++j)
     for (int i = 0; i <= tess.x; ++i) {
       glm::dvec2 uv(double(i) / tess.x, double(j) / tess.y);
-      m.add({(uv.x - 0.5) * size.x, (uv.y - 0.5) * size.y, 0}, {0, 0, 1}, {1, 0, 0, 1}, uv);
+      m.add({(uv.x - 0.5) * size.x, (uv.y - 0.5) * size.y, 0}, {0, 0, 1}, {1, 0, 0, 1}, uv * uv_repeat);
     }
   const uint32_t row = tess.x + 1;
   for (int j = 0; j < tess.y; ++j)

@@ -24,8 +24,9 @@ struct Mesh {
 };
 
 // Built-in primitives, centred on the origin. `plane` lies in z = 0 facing +z, u along
-// +x and v along +y, cut into nx × ny quads.
-Mesh make_plane(glm::dvec2 size, glm::ivec2 tessellation);
+// +x and v along +y, cut into nx × ny quads; uv spans [0, repeat.x] × [0, repeat.y], so
+// that a repeating texture tiles `repeat` times.
+Mesh make_plane(glm::dvec2 size, glm::ivec2 tessellation, glm::dvec2 uv_repeat = {1, 1});
 // Sphere around the y axis: u runs with longitude, v from the south pole (0) to the
 // north pole (1).
 Mesh make_sphere(double radius, int segments, int rings);

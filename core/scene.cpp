@@ -72,6 +72,8 @@ void apply_override(json& doc, const std::string& assignment, const std::string&
     value = json::parse(text);
   } catch (const json::parse_error&) {
     value = text;  // not JSON: a bare string such as `exact`
+  } catch (const json::exception& e) {  // JSON, but not representable (1e999)
+    throw InputError(file, key, std::string("cannot read the value: ") + e.what());
   }
   json* node = &doc;
   std::string walked;
@@ -178,8 +180,13 @@ Texture read_texture(JsonReader r, const std::string& name, const std::string& b
 }
 
 Mesh read_shape(JsonReader& r, const std::string& shape, const std::string& base_dir) {
-  if (shape == "plane")
-    return make_plane(r.vec2("size", glm::dvec2(2, 2)), r.ivec2("tessellation", glm::ivec2(1, 1), 1, 4096));
+  if (shape == "plane") {
+    const glm::dvec2 size = r.vec2("size", glm::dvec2(2, 2));
+    if (size.x <= 0 || size.y <= 0) r.fail("size", "must be positive");
+    const glm::dvec2 repeat = r.vec2("uv_repeat", glm::dvec2(1, 1));
+    if (repeat.x <= 0 || repeat.y <= 0) r.fail("uv_repeat", "must be positive");
+    return make_plane(size, r.ivec2("tessellation", glm::ivec2(1, 1), 1, 4096), repeat);
+  }
   if (shape == "sphere")
     return make_sphere(r.number("radius", 1.0, 1e-9, 1e9), r.integer("segments", 48, 3, 4096),
                        r.integer("rings", 24, 2, 4096));

@@ -1,0 +1,17 @@
+// The documentation keeps up with the code: every pipeline setting is documented.
+#include <fstream>
+#include <sstream>
+
+#include "core/pipeline_config.hpp"
+#include "test_util.hpp"
+
+TEST_CASE("every pipeline setting appears in docs/configuration.md", "[docs]") {
+  std::ifstream in(test::source_path("docs/configuration.md"));
+  REQUIRE(in);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  for (const auto& s : core::pipeline_settings()) {
+    INFO(s.key);
+    CHECK_THAT(ss.str(), Catch::Contains("`pipeline." + s.key + "`"));
+  }
+}
