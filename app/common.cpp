@@ -8,7 +8,8 @@ namespace app {
 void SceneOptions::add_to(CLI::App& cmd) {
   cmd.add_option("scene", scene, "scene file (JSON, docs/scene-format.md); the built-in demo if omitted");
   cmd.add_option("--set", overrides, "override a scene field: key=value, e.g. pipeline.normalize.mode=exact")
-      ->take_all();
+      ->take_all()
+      ->allow_extra_args(false);  // `--set a=1 scene.json`: the scene is no override
 }
 
 core::Scene SceneOptions::load() const {
@@ -20,8 +21,11 @@ void describe(core::Frame& frame, const core::Scene& scene, const SceneOptions& 
   frame.attributes["shadetlm:version"] = core::kVersion;
   frame.attributes["shadetlm:renderer"] = renderer;
   frame.attributes["shadetlm:scene"] = scene.file;
-  frame.attributes["shadetlm:config"] = scene.pipeline.resolved().dump();
-  frame.attributes["shadetlm:overrides"] = nlohmann::json(options.overrides).dump();
+  // Command-line text need not be UTF-8: replace what is not, rather than fail after
+  // the render.
+  const auto replace = nlohmann::json::error_handler_t::replace;
+  frame.attributes["shadetlm:config"] = scene.pipeline.resolved().dump(-1, ' ', false, replace);
+  frame.attributes["shadetlm:overrides"] = nlohmann::json(options.overrides).dump(-1, ' ', false, replace);
 }
 
 void write_frame(const core::Frame& frame, const std::string& exr, const std::string& png) {
@@ -30,8 +34,22 @@ void write_frame(const core::Frame& frame, const std::string& exr, const std::st
     const auto dir = std::filesystem::path(path).parent_path();
     if (!dir.empty()) std::filesystem::create_directories(dir);
   }
-  if (!exr.empty()) core::write_exr(exr, frame);
-  if (!png.empty()) core::write_png_preview(png, frame);
+  // Both files go to temporaries first: either both appear, or neither does.
+  std::vector<std::pair<std::string, std::string>> written;  // (temporary, final)
+  try {
+    if (!exr.empty()) {
+      written.emplace_back(core::temporary_path_for(exr), exr);
+      core::write_exr(written.back().first, frame);
+    }
+    if (!png.empty()) {
+      written.emplace_back(core::temporary_path_for(png), png);
+      core::write_png_preview(written.back().first, frame);
+    }
+  } catch (...) {
+    for (const auto& [tmp, path] : written) core::remove_quietly(tmp);
+    throw;
+  }
+  for (const auto& [tmp, path] : written) core::rename_into_place(tmp, path);
 }
 
 }  // namespace app

@@ -1,5 +1,7 @@
 // shadetlm compare A.exr B.exr [--layer RGB|Z|N] [--fail T] [--failpercent P]
 //                  [--hardfail H] [--diff diff.exr] [--json]
+#include <cmath>
+#include <cstdlib>
 #include <iostream>
 
 #include "app/commands.hpp"
@@ -20,10 +22,19 @@ Command add_compare_command(CLI::App& app) {
   cmd->add_option("b", opt->b, "reference frame")->required();
   cmd->add_option("--layer", opt->compare.layers, "layers to compare (default: all present)")
       ->check(CLI::IsMember({"RGB", "Z", "N"}));
-  cmd->add_option("--fail", opt->compare.fail, "a pixel fails over this absolute error")->capture_default_str();
+  // NaN would make every comparison pass (or fail): thresholds are numbers ≥ 0.
+  const CLI::Validator threshold(
+      [](std::string& s) {
+        double x = std::strtod(s.c_str(), nullptr);
+        return x >= 0 && !std::isnan(x) ? std::string() : "must be a number >= 0";
+      },
+      "NUMBER>=0");
+  cmd->add_option("--fail", opt->compare.fail, "a pixel fails over this absolute error")
+      ->check(threshold)->capture_default_str();
   cmd->add_option("--failpercent", opt->compare.fail_percent, "the layer fails when more than this % of pixels fail")
-      ->capture_default_str();
-  cmd->add_option("--hardfail", opt->compare.hard_fail, "the layer fails when any pixel's error is over this");
+      ->check(threshold)->capture_default_str();
+  cmd->add_option("--hardfail", opt->compare.hard_fail, "the layer fails when any pixel's error is over this")
+      ->check(threshold);
   cmd->add_option("--diff", opt->diff, "write |A - B| per channel to this EXR");
   cmd->add_flag("--json", opt->json, "print the metrics as JSON");
   return {cmd, [opt]() {

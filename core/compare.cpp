@@ -94,6 +94,10 @@ CompareResult compare_frames(const Frame& a, const Frame& b, const CompareOption
     r.pass = r.pass && m.pass;
     r.layers.push_back(m);
   }
+  if (r.layers.empty() && r.problem.empty()) {
+    r.pass = false;
+    r.problem = "no layer (RGB, Z, N) in common";
+  }
   return r;
 }
 

@@ -27,6 +27,9 @@ int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
 
 std::vector<ClipVertex> clip_triangle(const glm::dvec4& c0, const glm::dvec4& c1,
                                       const glm::dvec4& c2) {
+  for (const glm::dvec4* c : {&c0, &c1, &c2})
+    for (int k = 0; k < 4; ++k)
+      if (!std::isfinite((*c)[k])) return {};  // nothing sensible to draw
   std::vector<ClipVertex> poly = {{c0, {1, 0, 0}}, {c1, {0, 1, 0}}, {c2, {0, 0, 1}}};
   std::vector<ClipVertex> next;
   for (int plane = 0; plane < 6 && !poly.empty(); ++plane) {
@@ -37,8 +40,14 @@ std::vector<ClipVertex> clip_triangle(const glm::dvec4& c0, const glm::dvec4& c1
       const double da = plane_distance(a.clip, plane), db = plane_distance(b.clip, plane);
       if (da >= 0) next.push_back(a);
       if ((da >= 0) != (db >= 0)) {
-        const double t = da / (da - db);
-        next.push_back({a.clip + (b.clip - a.clip) * t, a.bary + (b.bary - a.bary) * t});
+        // Always from the inside vertex towards the outside one, so that an edge
+        // shared by two triangles (walked a→b in one, b→a in the other) is cut at
+        // bitwise the same point.
+        const ClipVertex& in = da >= 0 ? a : b;
+        const ClipVertex& out = da >= 0 ? b : a;
+        const double din = da >= 0 ? da : db, dout = da >= 0 ? db : da;
+        const double t = din / (din - dout);
+        next.push_back({in.clip + (out.clip - in.clip) * t, in.bary + (out.bary - in.bary) * t});
       }
     }
     poly.swap(next);

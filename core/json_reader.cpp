@@ -208,8 +208,24 @@ void JsonReader::finish() const {
 }
 
 json parse_json_text(const std::string& text, const std::string& file) {
+  // nlohmann keeps the last of repeated keys; a scene must not say one thing twice.
+  std::vector<std::set<std::string>> keys;
+  std::vector<std::string> path;
+  std::string duplicate;
+  auto check = [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start) {
+      keys.emplace_back();
+    } else if (event == json::parse_event_t::object_end) {
+      keys.pop_back();
+    } else if (event == json::parse_event_t::key && duplicate.empty() && !keys.empty()) {
+      if (!keys.back().insert(parsed.get<std::string>()).second) duplicate = parsed.get<std::string>();
+    }
+    return true;
+  };
   try {
-    return json::parse(text);
+    json doc = json::parse(text, check);
+    if (!duplicate.empty()) throw InputError(file, duplicate, "the key is given twice in one object");
+    return doc;
   } catch (const json::parse_error& e) {
     // Turn the byte offset into a line and a column a user can jump to.
     size_t line = 1, col = 1;

@@ -17,7 +17,8 @@ Mesh load_mesh_file(const std::string& path) {
   const aiScene* scene = importer.ReadFile(
       path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
                 aiProcess_CalcTangentSpace | aiProcess_PreTransformVertices |
-                aiProcess_SortByPType | aiProcess_FindDegenerates | aiProcess_FindInvalidData);
+                aiProcess_SortByPType | aiProcess_FindDegenerates | aiProcess_FindInvalidData |
+                aiProcess_ValidateDataStructure);
   if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
     throw InputError(path, "", std::string("cannot load the mesh: ") + importer.GetErrorString());
 
@@ -50,12 +51,25 @@ Mesh load_mesh_file(const std::string& path) {
     for (unsigned f = 0; f < m->mNumFaces; ++f) {
       const aiFace& face = m->mFaces[f];
       if (face.mNumIndices != 3) continue;
+      for (int k = 0; k < 3; ++k)
+        if (face.mIndices[k] >= m->mNumVertices)
+          throw InputError(path, "", "a face indexes a vertex that does not exist");
       out.triangles.push_back({base + face.mIndices[0], base + face.mIndices[1], base + face.mIndices[2]});
     }
   }
-  for (const auto& p : out.positions)
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      throw InputError(path, "", "a vertex position is NaN or infinite");
+  auto finite = [](auto v) {
+    for (int k = 0; k < v.length(); ++k)
+      if (!std::isfinite(v[k])) return false;
+    return true;
+  };
+  for (size_t i = 0; i < out.vertex_count(); ++i) {
+    if (!finite(out.positions[i])) throw InputError(path, "", "a vertex position is NaN or infinite");
+    if (!finite(out.normals[i])) throw InputError(path, "", "a vertex normal is NaN or infinite");
+    if (!finite(out.uvs[i])) throw InputError(path, "", "a texture coordinate is NaN or infinite");
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(out.positions[i][k]) > 1e6)
+        throw InputError(path, "", "vertex coordinates must lie within ±1e6");
+  }
   if (out.triangles.empty()) throw InputError(path, "", "the file holds no triangles");
   return out;
 }

@@ -31,13 +31,14 @@ const SettingSpec* find_spec(const std::string& key) {
 }
 
 // Flattens nested objects into dotted keys: {"normalize": {"mode": x}} → normalize.mode.
-void flatten(const json& j, const std::string& prefix, std::map<std::string, json>& out) {
+void flatten(const json& j, const std::string& prefix, std::map<std::string, json>& out,
+             const std::string& file) {
   for (auto it = j.begin(); it != j.end(); ++it) {
     std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
     if (it->is_object() && !find_spec(key))
-      flatten(*it, key, out);
-    else
-      out[key] = *it;
+      flatten(*it, key, out, file);
+    else if (!out.emplace(key, *it).second)  // both nested and dotted
+      throw InputError(file, "pipeline." + key, "the setting is given twice");
   }
 }
 }  // namespace
@@ -47,7 +48,7 @@ PipelineConfig PipelineConfig::from_json(const json& section, const std::string&
   if (!section.is_null() && !section.is_object())
     throw InputError(file, "pipeline", "expected an object");
   std::map<std::string, json> given;
-  if (section.is_object()) flatten(section, "", given);
+  if (section.is_object()) flatten(section, "", given, file);
   for (const auto& [key, value] : given) {
     const SettingSpec* spec = find_spec(key);
     const std::string field = "pipeline." + key;

@@ -110,15 +110,28 @@ void apply_override(json& doc, const std::string& assignment, const std::string&
 
 namespace {
 
+// Lengths the model accepts: far enough from double's limits that products of
+// positions, and determinants of scales, neither overflow nor underflow.
+constexpr double kMaxLength = 1e6, kMinLength = 1e-6;
+
+glm::dvec3 position(JsonReader& r, const std::string& key, std::optional<glm::dvec3> fallback) {
+  glm::dvec3 p = r.vec3(key, fallback);
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(p[k]) > kMaxLength) r.fail(key, "coordinates must lie within ±1e6");
+  return p;
+}
+
 glm::dmat4 read_transform(JsonReader r) {
-  glm::dvec3 translate = r.vec3("translate", glm::dvec3(0));
+  glm::dvec3 translate = position(r, "translate", glm::dvec3(0));
   glm::dvec3 rotate = r.vec3("rotate", glm::dvec3(0));
   glm::dvec3 scale(1);
   if (r.has("scale") && r.raw("scale").is_number())
     scale = glm::dvec3(r.number("scale"));
   else
     scale = r.vec3("scale", glm::dvec3(1));
-  if (scale.x == 0 || scale.y == 0 || scale.z == 0) r.fail("scale", "a scale of 0 flattens the object");
+  for (int k = 0; k < 3; ++k)
+    if (!(std::abs(scale[k]) >= kMinLength && std::abs(scale[k]) <= kMaxLength))
+      r.fail("scale", "each scale factor's size must lie in [1e-6, 1e6] (a scale of 0 flattens the object)");
   r.finish();
   // M = T · Rz · Ry · Rx · S: scale first, then rotate about x, y, z, then translate.
   glm::dmat4 m = glm::translate(glm::dmat4(1), translate);
@@ -146,12 +159,17 @@ Texture read_texture(JsonReader r, const std::string& name, const std::string& b
   Texture t;
   if (type == "image") {
     const std::string file = resolve(base_dir, r.string("file"));
-    if (!fs::exists(file)) r.fail("file", "no such file: " + file);
-    t = load_texture_file(file);
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) r.fail("file", "no such file: " + file);
+    try {
+      t = load_texture_file(file);
+    } catch (const InputError& e) {
+      r.fail("file", e.what());
+    }
     if (r.has("colorspace")) t.srgb = r.choice("colorspace", std::nullopt, {"srgb", "linear"}) == "srgb";
   } else {
     ProceduralParams p;
-    p.size = r.ivec2("size", glm::ivec2(256, 256), 1, 16384);
+    p.size = r.ivec2("size", glm::ivec2(256, 256), 1, 8192);
     if (r.has("cells") && r.raw("cells").is_number_integer())
       p.cells = glm::ivec2(r.integer("cells", std::nullopt, 1, 4096));
     else
@@ -182,23 +200,25 @@ Texture read_texture(JsonReader r, const std::string& name, const std::string& b
 Mesh read_shape(JsonReader& r, const std::string& shape, const std::string& base_dir) {
   if (shape == "plane") {
     const glm::dvec2 size = r.vec2("size", glm::dvec2(2, 2));
-    if (size.x <= 0 || size.y <= 0) r.fail("size", "must be positive");
+    for (int k = 0; k < 2; ++k)
+      if (!(size[k] >= kMinLength && size[k] <= kMaxLength)) r.fail("size", "must lie in [1e-6, 1e6]");
     const glm::dvec2 repeat = r.vec2("uv_repeat", glm::dvec2(1, 1));
     if (repeat.x <= 0 || repeat.y <= 0) r.fail("uv_repeat", "must be positive");
-    return make_plane(size, r.ivec2("tessellation", glm::ivec2(1, 1), 1, 4096), repeat);
+    return make_plane(size, r.ivec2("tessellation", glm::ivec2(1, 1), 1, 2048), repeat);
   }
   if (shape == "sphere")
-    return make_sphere(r.number("radius", 1.0, 1e-9, 1e9), r.integer("segments", 48, 3, 4096),
-                       r.integer("rings", 24, 2, 4096));
+    return make_sphere(r.number("radius", 1.0, kMinLength, kMaxLength), r.integer("segments", 48, 3, 2048),
+                       r.integer("rings", 24, 2, 2048));
   if (shape == "torus") {
-    double major = r.number("major_radius", 1.0, 1e-9, 1e9);
-    double minor = r.number("minor_radius", 0.35, 1e-9, 1e9);
+    double major = r.number("major_radius", 1.0, kMinLength, kMaxLength);
+    double minor = r.number("minor_radius", 0.35, kMinLength, kMaxLength);
     if (minor >= major) r.fail("minor_radius", "must be smaller than major_radius");
-    return make_torus(major, minor, r.integer("segments", 48, 3, 4096), r.integer("sides", 24, 3, 4096));
+    return make_torus(major, minor, r.integer("segments", 48, 3, 2048), r.integer("sides", 24, 3, 2048));
   }
-  if (shape == "cube") return make_cube(r.number("size", 1.0, 1e-9, 1e9));
+  if (shape == "cube") return make_cube(r.number("size", 1.0, kMinLength, kMaxLength));
   const std::string file = resolve(base_dir, r.string("file"));
-  if (!fs::exists(file)) r.fail("file", "no such file: " + file);
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) r.fail("file", "no such file: " + file);
   try {
     return load_mesh_file(file);
   } catch (const InputError& e) {
@@ -231,11 +251,12 @@ Scene load_scene_text(const std::string& text, const std::string& name, const st
   {
     JsonReader r = root.object("camera");
     Camera& c = s.camera;
-    c.position = r.vec3("position");
-    c.target = r.vec3("target");
+    c.position = position(r, "position", std::nullopt);
+    c.target = position(r, "target", std::nullopt);
     c.up = r.vec3("up", glm::dvec3(0, 1, 0));
     c.fov_y_deg = r.number("fov_y", 45.0, 1e-3, 179.0);
-    glm::ivec2 res = r.ivec2("resolution", std::nullopt, 1, 16384);
+    // 8192² keeps the golden model's double-precision image within a few GB.
+    glm::ivec2 res = r.ivec2("resolution", std::nullopt, 1, 8192);
     c.width = res.x;
     c.height = res.y;
     c.near = r.number("near", 0.1, 1e-9, 1e12);
@@ -259,7 +280,7 @@ Scene load_scene_text(const std::string& text, const std::string& name, const st
         if (glm::length(d) < 1e-12) r.fail("direction", "the direction is zero");
         l.direction = glm::normalize(d);
       } else {
-        l.position = r.vec3("position");
+        l.position = position(r, "position", std::nullopt);
       }
       l.color = color(r, "color", glm::dvec3(1));
       l.intensity = r.number("intensity", 1.0, 0, 1e12);

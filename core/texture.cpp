@@ -108,7 +108,16 @@ glm::dvec4 Texture::texel(int x, int y) const {
 }
 
 glm::dvec4 Texture::bilinear(glm::dvec2 uv) const {
-  const double s = uv.x * width - 0.5, t = (1.0 - uv.y) * height - 0.5;
+  double s = uv.x * width - 0.5, t = (1.0 - uv.y) * height - 0.5;
+  // Bring far coordinates near the texture before converting to int: a whole number
+  // of periods for repeat, one texel beyond the border for clamp (reads the same).
+  if (wrap == Wrap::Repeat) {
+    s -= width * std::floor(s / width);
+    t -= height * std::floor(t / height);
+  } else {
+    s = std::clamp(s, -1.0, double(width));
+    t = std::clamp(t, -1.0, double(height));
+  }
   const double fs = std::floor(s), ft = std::floor(t);
   const int x = int(fs), y = int(ft);
   const double a = s - fs, b = t - ft;

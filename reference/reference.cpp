@@ -1,5 +1,6 @@
 #include "reference/reference.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -79,14 +80,24 @@ Image render(const core::Scene& scene) {
             const glm::dvec3 dir = fwd + right * (sx * tan_half * aspect) + up * (sy * tan_half);
             const double denom = glm::dot(dir, Ng);
             if (denom == 0) continue;  // the ray runs inside the triangle's plane
-            const double t = glm::dot(P[0] - eye, Ng) / denom;
+            double t = glm::dot(P[0] - eye, Ng) / denom;
+            glm::dvec3 X = eye + dir * t;
+            // Barycentric coordinates of X: sub-triangle areas over the whole.
+            double b0 = glm::dot(glm::cross(P[1] - X, P[2] - X), Ng) / Ng2;
+            double b1 = glm::dot(glm::cross(P[2] - X, P[0] - X), Ng) / Ng2;
+            double b2 = 1 - b0 - b1;
+            if (!(t > 0)) {
+              // Snapping can cover a pixel centre just outside the triangle; near the
+              // plane's vanishing line its ray meets the plane far away or behind the
+              // eye. Take the nearest point of the triangle instead (clamped weights).
+              b0 = std::max(b0, 0.0), b1 = std::max(b1, 0.0), b2 = std::max(b2, 0.0);
+              const double sum = b0 + b1 + b2;
+              b0 /= sum, b1 /= sum, b2 /= sum;
+              X = b0 * P[0] + b1 * P[1] + b2 * P[2];
+              t = glm::dot(X - eye, fwd);
+            }
             const size_t i = img.index(px, py);
             if (!(t < img.depth[i])) continue;
-            const glm::dvec3 X = eye + dir * t;
-            // Barycentric coordinates of X: sub-triangle areas over the whole.
-            const double b0 = glm::dot(glm::cross(P[1] - X, P[2] - X), Ng) / Ng2;
-            const double b1 = glm::dot(glm::cross(P[2] - X, P[0] - X), Ng) / Ng2;
-            const double b2 = 1 - b0 - b1;
             const glm::dvec3 N = glm::normalize(b0 * mesh.normals[tri.x] + b1 * mesh.normals[tri.y] +
                                                 b2 * mesh.normals[tri.z]);
             const glm::dvec2 uv = b0 * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];

@@ -61,6 +61,10 @@ expect_output missing-scene "nowhere.json"
 expect_no_file missing-scene "$tmp/bad3.exr"
 check missing-frame 2 "$bin" compare "$tmp/nowhere.exr" "$tmp/demo.exr"
 expect_output missing-frame "nowhere.exr"
+check nan-threshold 2 "$bin" compare "$tmp/bright.exr" "$tmp/demo.exr" --fail nan
+check negative-threshold 2 "$bin" compare "$tmp/bright.exr" "$tmp/demo.exr" --hardfail -1
+# An override before the scene leaves the scene a scene.
+check set-then-scene 0 "$bin" reference --set camera.resolution=[32,24] "$src/scenes/knot.json" -o "$tmp/k.exr"
 check bad-option 2 "$bin" reference --frobnicate
 check no-command 2 "$bin"
 

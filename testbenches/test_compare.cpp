@@ -91,6 +91,15 @@ TEST_CASE("resolution and channel mismatches fail before any metric", "[compare]
   CHECK(core::compare_frames(a, b, only_rgb).pass);  // N is not asked for
 }
 
+TEST_CASE("frames with no layer in common fail", "[compare]") {
+  core::Frame a(2, 2), b(2, 2);
+  a.add("Y", 0.0f);
+  b.add("Y", 1.0f);
+  const auto r = core::compare_frames(a, b, {});
+  CHECK(!r.pass);
+  CHECK_THAT(r.problem, Catch::Contains("no layer"));
+}
+
 TEST_CASE("the difference frame holds |A - B| per channel", "[compare]") {
   const core::Frame b = frame(3, 1, 1.0f);
   core::Frame a = b;

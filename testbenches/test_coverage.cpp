@@ -149,19 +149,33 @@ TEST_CASE("snapping rounds to 1/256 pixel and orders the vertices", "[coverage]"
 }
 
 TEST_CASE("clipping keeps the triangle's geometry and its barycentric weights", "[coverage]") {
-  // A triangle crossing the near plane (z_clip = -w) and the guard band.
-  const glm::dvec4 c[3] = {{0, 0, -3, 1}, {20, 0, 5, 6}, {0, 1, 2, 3}};
+  // A triangle crossing the near plane (z_clip = −w), the +x guard band (x/w = 10 at
+  // the second vertex) and the far plane (z/w = 1.5 at the third).
+  const glm::dvec4 c[3] = {{0, 0, -3, 1}, {60, 0, 5, 6}, {0, 1, 4.5, 3}};
   const auto poly = core::clip_triangle(c[0], c[1], c[2]);
-  REQUIRE(poly.size() >= 3);
+  REQUIRE(poly.size() >= 5);
   for (const auto& v : poly) {
     const glm::dvec4 mix = v.bary.x * c[0] + v.bary.y * c[1] + v.bary.z * c[2];
     for (int k = 0; k < 4; ++k) CHECK(mix[k] == Approx(v.clip[k]).margin(1e-12));
-    CHECK(v.clip.z + v.clip.w >= -1e-12);                      // in front of the near plane
-    CHECK(core::kGuardBand * v.clip.w - v.clip.x >= -1e-12);   // inside the guard band
+    const glm::dvec4 p = v.clip;
+    const double g = core::kGuardBand;
+    for (double d : {p.z + p.w, p.w - p.z, g * p.w - p.x, g * p.w + p.x, g * p.w - p.y, g * p.w + p.y})
+      CHECK(d >= -1e-12);  // inside all six planes
     CHECK(v.bary.x + v.bary.y + v.bary.z == Approx(1.0));
   }
+  // A shared edge is cut at bitwise the same point whichever way it is walked.
+  const auto other = core::clip_triangle(c[1], c[0], {0, -1, 0, 1});
+  int shared = 0;
+  for (const auto& a : poly)
+    for (const auto& b : other) shared += a.clip == b.clip && a.clip.z + a.clip.w == 0;
+  CHECK(shared == 1);
   // Entirely behind the camera: nothing left.
   CHECK(core::clip_triangle({0, 0, -5, -1}, {1, 0, -5, -1}, {0, 1, -5, -1}).empty());
   // Entirely inside: unchanged.
-  CHECK(core::clip_triangle({0, 0, 0, 1}, {0.5, 0, 0, 1}, {0, 0.5, 0, 1}).size() == 3);
+  const auto inside = core::clip_triangle({0, 0, 0, 1}, {0.5, 0, 0, 1}, {0, 0.5, 0, 1});
+  REQUIRE(inside.size() == 3);
+  CHECK(inside[1].clip == glm::dvec4(0.5, 0, 0, 1));
+  CHECK(inside[1].bary == glm::dvec3(0, 1, 0));
+  // Non-finite input: nothing.
+  CHECK(core::clip_triangle({0, 0, 0, 1}, {NAN, 0, 0, 1}, {0, 1, 0, 1}).empty());
 }

@@ -74,11 +74,14 @@ TEST_CASE("a failed write leaves no file, partial or temporary", "[frames]") {
   const std::string path = (dir / "missing-folder" / "f.exr").string();
   CHECK_THROWS(core::write_exr(path, sample_frame()));
   CHECK(!fs::exists(path));
-  // A successful write leaves the frame and nothing else (no temporary).
+  // A failed rename (the target is a folder) leaves no temporary behind.
+  std::filesystem::create_directories(dir / "taken.exr" / "inside");
+  CHECK_THROWS(core::write_exr((dir / "taken.exr").string(), sample_frame()));
+  // A successful write leaves the frame and nothing else.
   core::write_exr((dir / "ok.exr").string(), sample_frame());
   int files = 0;
   for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
-  CHECK(files == 1);
+  CHECK(files == 1);  // ok.exr only
 }
 
 TEST_CASE("a file that is not an EXR is reported by name", "[frames][bad]") {

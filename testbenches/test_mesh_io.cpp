@@ -84,6 +84,19 @@ TEST_CASE("the committed mesh asset loads with tangents from its uvs", "[mesh_io
     CHECK(glm::length(glm::dvec3(m.tangents[i])) == Approx(1).margin(1e-6));
     CHECK(std::abs(glm::dot(m.normals[i], glm::dvec3(m.tangents[i]))) < 1e-6);
   }
+  // The file has no tangents: they must follow dP/du of the uv parameterization (and
+  // B = w·N×T follow dP/dv), which an arbitrary orthogonal vector would not.
+  for (const auto& t : m.triangles) {
+    const glm::dvec3 a = m.positions[t.x], b = m.positions[t.y], c = m.positions[t.z];
+    const glm::dvec2 d1 = m.uvs[t.y] - m.uvs[t.x], d2 = m.uvs[t.z] - m.uvs[t.x];
+    const double det = d1.x * d2.y - d2.x * d1.y;
+    REQUIRE(std::abs(det) > 1e-12);
+    const glm::dvec3 dpdu = glm::normalize(((b - a) * d2.y - (c - a) * d1.y) / det);
+    const glm::dvec3 dpdv = glm::normalize(((c - a) * d1.x - (b - a) * d2.x) / det);
+    const glm::dvec4 tan = m.tangents[t.x];
+    CHECK(glm::dot(glm::dvec3(tan), dpdu) > 0.8);
+    CHECK(glm::dot(tan.w * glm::cross(m.normals[t.x], glm::dvec3(tan)), dpdv) > 0.8);
+  }
 }
 
 TEST_CASE("a broken mesh file names the file", "[mesh_io][bad]") {

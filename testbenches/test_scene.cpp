@@ -214,3 +214,45 @@ TEST_CASE("bad overrides (--set) are reported", "[scene][bad]") {
   CHECK(error_of(minimal(), {"camera.position.x=1"}).first == "camera.position.x");
   CHECK(error_of(minimal(), {"camera.fov_y.x=1"}).first == "camera.fov_y");  // fov_y became an object
 }
+
+TEST_CASE("a key given twice is rejected", "[scene][bad]") {
+  std::string text = minimal().dump();
+  text.insert(text.find("\"position\""), "\"near\":0.5,\"near\":0.7,");
+  core::InputError e = test::scene_error(text);
+  CHECK(e.field() == "near");
+  CHECK_THAT(e.what(), Catch::Contains("twice"));
+  json doc = minimal();
+  doc["pipeline"] = {{"normalize", {{"mode", "exact"}}}, {"normalize.mode", "rsqrt1"}};
+  CHECK(error_of(doc).first == "pipeline.normalize.mode");
+}
+
+TEST_CASE("magnitudes that would overflow or underflow are rejected", "[scene][bad]") {
+  CHECK(error_of(minimal(), {"objects.0.transform={\"scale\":1e300}"}).first == "objects.0.transform.scale");
+  CHECK(error_of(minimal(), {"objects.0.transform={\"scale\":1e-120}"}).first == "objects.0.transform.scale");
+  CHECK(error_of(minimal(), {"objects.0.transform={\"translate\":[1e30,0,0]}"}).first ==
+        "objects.0.transform.translate");
+  CHECK(error_of(minimal(), {"objects.0.radius=1e9"}).first == "objects.0.radius");
+  CHECK(error_of(minimal(), {"camera.position=[0,0,1e9]"}).first == "camera.position");
+  CHECK(error_of(minimal(), {"camera.resolution=[16384,16384]"}).first == "camera.resolution.0");
+}
+
+TEST_CASE("world space keeps normals unit and fronts in front under any transform", "[scene]") {
+  for (const char* t : {R"({"scale": [2, 0.5, 3]})", R"({"scale": [-1, 1, 1]})",
+                        R"({"scale": [1, -2, 0.5], "rotate": [30, 60, 10]})"}) {
+    INFO(t);
+    json doc = minimal();
+    doc["objects"][0]["transform"] = json::parse(t);
+    const core::Scene s = core::load_scene_text(doc.dump(), "t.json", ".");
+    const core::Mesh w = core::to_world(s.objects[0]);
+    for (size_t i = 0; i < w.vertex_count(); ++i) {
+      CHECK(glm::length(w.normals[i]) == Approx(1.0));
+      CHECK(std::abs(glm::dot(w.normals[i], glm::dvec3(w.tangents[i]))) < 1e-12);
+      // A sphere around the origin: the world normal points away from the centre.
+      CHECK(glm::dot(w.normals[i], w.positions[i]) > 0);
+    }
+    for (const auto& tri : w.triangles) {
+      const glm::dvec3 ng = glm::cross(w.positions[tri.y] - w.positions[tri.x], w.positions[tri.z] - w.positions[tri.x]);
+      CHECK(glm::dot(ng, w.normals[tri.x] + w.normals[tri.y] + w.normals[tri.z]) > 0);
+    }
+  }
+}

@@ -1,0 +1,77 @@
+#pragma once
+// Operation counts by kind — the cost figures the papers' claims are about — and
+// Counted<T>, a number type that counts every operation done on it, so that a
+// testbench can check a kernel's declared counts against what its code really does.
+#include <cmath>
+#include <cstdint>
+
+#include <nlohmann/json.hpp>
+
+namespace modules {
+
+struct Ops {
+  uint64_t add = 0, mul = 0, div = 0, sqrt = 0, rsqrt = 0, lut = 0, fetch = 0;
+
+  Ops& operator+=(const Ops& o) {
+    add += o.add; mul += o.mul; div += o.div; sqrt += o.sqrt; rsqrt += o.rsqrt; lut += o.lut;
+    fetch += o.fetch;
+    return *this;
+  }
+  Ops operator*(uint64_t n) const {
+    return {add * n, mul * n, div * n, sqrt * n, rsqrt * n, lut * n, fetch * n};
+  }
+  bool operator==(const Ops& o) const {
+    return add == o.add && mul == o.mul && div == o.div && sqrt == o.sqrt && rsqrt == o.rsqrt &&
+           lut == o.lut && fetch == o.fetch;
+  }
+  uint64_t total() const { return add + mul + div + sqrt + rsqrt + lut + fetch; }
+  nlohmann::json to_json() const {
+    return {{"add", add}, {"mul", mul}, {"div", div}, {"sqrt", sqrt},
+            {"rsqrt", rsqrt}, {"lut", lut}, {"fetch", fetch}};
+  }
+};
+
+// Counted<T>: T with every arithmetic operation tallied in Counted<T>::ops.
+// Subtraction counts as an add, comparisons and negation are free (as in hardware,
+// where they are wiring or a sign flip).
+template <class T>
+struct Counted {
+  T v{};
+  static inline Ops ops{};
+
+  Counted() = default;
+  Counted(T x) : v(x) {}  // NOLINT: constants mix freely, as with T
+  explicit operator T() const { return v; }
+
+  friend Counted operator+(Counted a, Counted b) { ++ops.add; return a.v + b.v; }
+  friend Counted operator-(Counted a, Counted b) { ++ops.add; return a.v - b.v; }
+  friend Counted operator*(Counted a, Counted b) { ++ops.mul; return a.v * b.v; }
+  friend Counted operator/(Counted a, Counted b) { ++ops.div; return a.v / b.v; }
+  friend Counted operator-(Counted a) { return -a.v; }
+  Counted& operator+=(Counted b) { return *this = *this + b; }
+  Counted& operator-=(Counted b) { return *this = *this - b; }
+  Counted& operator*=(Counted b) { return *this = *this * b; }
+  friend bool operator<(Counted a, Counted b) { return a.v < b.v; }
+  friend bool operator>(Counted a, Counted b) { return a.v > b.v; }
+  friend bool operator<=(Counted a, Counted b) { return a.v <= b.v; }
+  friend bool operator>=(Counted a, Counted b) { return a.v >= b.v; }
+};
+
+// The elementary functions of the datapaths, for plain floating types and Counted.
+template <class T> T sqrt_op(T x) { return std::sqrt(x); }
+template <class T> T rsqrt_op(T x) { return T(1) / std::sqrt(x); }
+template <class T> T pow_op(T x, T e) { return std::pow(x, e); }
+template <class T> T max_op(T a, T b) { return a > b ? a : b; }
+template <class T> Counted<T> sqrt_op(Counted<T> x) { ++Counted<T>::ops.sqrt; return std::sqrt(x.v); }
+template <class T> Counted<T> rsqrt_op(Counted<T> x) { ++Counted<T>::ops.rsqrt; return T(1) / std::sqrt(x.v); }
+// The specular power is one table look-up in hardware (it is powf here).
+template <class T> Counted<T> pow_op(Counted<T> x, Counted<T> e) { ++Counted<T>::ops.lut; return std::pow(x.v, e.v); }
+
+// Adds operations done outside T (e.g. on the bits of a float) to T's tally.
+template <class T> void tally_counted(const Ops& o) { Counted<T>::ops += o; }
+
+// The value of a number of any of these types, as a plain T.
+template <class T> T value(T x) { return x; }
+template <class T> T value(Counted<T> x) { return x.v; }
+
+}  // namespace modules

@@ -1,0 +1,59 @@
+#pragma once
+// What travels between the blocks: per triangle, its setup (plane equations and
+// increments); per span, a packet of up to kSpanMax visible pixels of one raster row
+// of one triangle, in structure-of-arrays form, filled in block by block.
+#include <cstdint>
+
+#include "core/coverage.hpp"
+#include "core/scene.hpp"
+#include "modules/common/ops.hpp"
+
+namespace modules {
+
+constexpr int kSpanMax = 64;   // pixels per packet
+constexpr int kMaxLights = 8;  // lights the lighting datapath holds
+
+// An attribute as a plane over the screen, in pixel steps from the triangle's
+// reference pixel: a(x, y) = a0 + ax·(x − x_ref) + ay·(y − y_ref).
+struct Plane {
+  float a0 = 0, ax = 0, ay = 0;
+  float at(int dx, int dy) const { return a0 + ax * float(dx) + ay * float(dy); }
+};
+
+struct TriangleSetup {
+  uint32_t id = 0;                     // running number in the frame
+  int object = 0;
+  const core::Material* material = nullptr;
+  core::SnappedTriangle coverage;      // the shared coverage convention
+  int x_ref = 0, y_ref = 0;            // reference pixel: leftmost of the top covered row
+
+  Plane inv_w;                         // 1/w, affine on screen
+  // The normal: N (affine mode) or N/w (perspective mode). n[k].ax and n[k].ay are the
+  // paper's constant increments ΔN_H and ΔN_V; n[k].a0 is the seed at the reference pixel.
+  Plane n[3];
+  float dn_d[3] = {0, 0, 0};           // ΔN_D = ΔN_H + ΔN_V: a step down and right
+  float dn_a[3] = {0, 0, 0};           // ΔN_A = ΔN_V − ΔN_H: a step down and left
+  float c = 0;                         // 2·|ΔN_H|², the radicand's second difference
+  Plane l[kMaxLights][3];              // (light position − P)/w, point lights
+  Plane v[3];                          // (eye − P)/w, local viewer
+  Plane uv[2];                         // uv/w
+};
+
+struct SpanPacket {
+  const TriangleSetup* tri = nullptr;
+  int y = 0;          // raster row
+  int x0 = 0;         // first pixel of this packet
+  int count = 0;      // visible pixels x0 … x0 + count − 1
+  int row_start = 0;  // first covered pixel of the row (where the edge walker stands)
+  uint64_t cycle = 0; // timing model: when the packet reaches the current block
+
+  float inv_w[kSpanMax];  // raster: 1/w
+  float w[kSpanMax];      // raster: w, the eye-space depth
+  float n[3][kSpanMax];   // normal_interp, then normalize: the normal
+  float l[kMaxLights][3][kSpanMax];  // vector_interp: unit L (point lights)
+  float h[kMaxLights][3][kSpanMax];  // vector_interp: unit H (point lights or local viewer)
+  float tex[3][kSpanMax]; // texture_fetch: colour texture
+  float rgb[3][kSpanMax]; // lighting
+};
+
+}  // namespace modules

@@ -1,0 +1,55 @@
+#include "modules/normal_interp/normal_interp_kernel.hpp"
+
+namespace modules {
+
+void NormalInterpKernel::process(SpanPacket& p) {
+  const TriangleSetup& t = *p.tri;
+  const uint64_t steps_before = steps_;
+  const float dh[3] = {t.n[0].ax, t.n[1].ax, t.n[2].ax};
+  const float dv[3] = {t.n[0].ay, t.n[1].ay, t.n[2].ay};
+  const float mh[3] = {-dh[0], -dh[1], -dh[2]};
+  if (t.id != triangle_) {  // a new triangle: start from its seed
+    triangle_ = t.id;
+    row_y_ = t.y_ref;
+    row_x_ = t.x_ref;
+    for (int c = 0; c < 3; ++c) row_n_[c] = t.n[c].a0;
+    x_ = row_x_;
+    for (int c = 0; c < 3; ++c) n_[c] = row_n_[c];
+  }
+  // Down the left edge to this packet's row. Rows with no pixel at all (possible for
+  // slivers) are crossed straight down.
+  while (row_y_ < p.y) {
+    const int next_x = row_y_ + 1 == p.y ? p.row_start : row_x_;
+    int dx = next_x - row_x_;
+    if (dx > 0) {
+      step(row_n_, t.dn_d);
+      --dx;
+    } else if (dx < 0) {
+      step(row_n_, t.dn_a);
+      ++dx;
+    } else {
+      step(row_n_, dv);
+    }
+    for (; dx > 0; --dx) step(row_n_, dh);
+    for (; dx < 0; ++dx) step(row_n_, mh);
+    ++row_y_;
+    row_x_ = next_x;
+    x_ = row_x_;
+    for (int c = 0; c < 3; ++c) n_[c] = row_n_[c];
+  }
+  // Along the row, through hidden pixels, to the packet's first pixel.
+  for (; x_ < p.x0; ++x_) step(n_, dh);
+  for (int i = 0; i < p.count; ++i) {
+    p.n[0][i] = n_[0];
+    p.n[1][i] = n_[1];
+    p.n[2][i] = n_[2];
+    n_[0] += dh[0];
+    n_[1] += dh[1];
+    n_[2] += dh[2];
+  }
+  x_ += p.count;
+  steps_ += uint64_t(p.count);
+  ops_.add += 3 * (steps_ - steps_before);
+}
+
+}  // namespace modules

@@ -1,0 +1,43 @@
+#pragma once
+// Normal interpolation by constant increments (normal-increments paper). Per triangle
+// the walker starts from the seed at the reference pixel and moves pixel by pixel,
+// adding one constant increment per step:
+//
+//   right along a span          N += ΔN_H
+//   down, same column           N += ΔN_V
+//   down and right (an edge)    N += ΔN_D = ΔN_H + ΔN_V
+//   down and left  (an edge)    N += ΔN_A = ΔN_V − ΔN_H
+//
+// It follows the left edge from row to row (a row start that moves by more than one
+// pixel adds further ±ΔN_H steps), then walks right along the row, through hidden
+// pixels too, as a walker that only adds must. Affine mode walks N; perspective mode
+// walks N/w, whose direction is that of the perspective-correct normal (1/w > 0), so
+// the normalization that follows needs no per-pixel reciprocal.
+#include "modules/common/packet.hpp"
+
+namespace modules {
+
+class NormalInterpKernel {
+ public:
+  void process(SpanPacket& p);
+  const Ops& ops() const { return ops_; }
+  uint64_t steps() const { return steps_; }  // increments added, all kinds
+
+ private:
+  void step(float n[3], const float d[3]) {
+    n[0] += d[0];
+    n[1] += d[1];
+    n[2] += d[2];
+    ++steps_;
+  }
+
+  uint32_t triangle_ = ~0u;
+  int row_y_ = 0, row_x_ = 0;  // the walker's row and row start
+  float row_n_[3] = {0, 0, 0}; // the normal there
+  int x_ = 0;                  // the walker's position along the row
+  float n_[3] = {0, 0, 0};     // the normal there
+  uint64_t steps_ = 0;
+  Ops ops_;
+};
+
+}  // namespace modules

@@ -1,0 +1,41 @@
+#include "modules/normalize/normalize_kernel.hpp"
+
+#include <stdexcept>
+
+namespace modules {
+
+NormalizeMode parse_normalize_mode(const std::string& name) {
+  if (name == "exact") return NormalizeMode::Exact;
+  if (name == "forward-difference") return NormalizeMode::ForwardDifference;
+  if (name == "rsqrt0") return NormalizeMode::Rsqrt0;
+  if (name == "rsqrt1") return NormalizeMode::Rsqrt1;
+  if (name == "rsqrt2") return NormalizeMode::Rsqrt2;
+  throw std::invalid_argument("unknown normalize mode " + name);
+}
+
+Ops normalize_ops_per_pixel(NormalizeMode mode) {
+  switch (mode) {
+    case NormalizeMode::Exact: return {/*add*/ 2, /*mul*/ 6, /*div*/ 1, /*sqrt*/ 1};
+    case NormalizeMode::ForwardDifference: return {2, 3, 0, 0, /*rsqrt*/ 1};
+    // The estimate is one integer subtraction; each Newton step 3 mul and 1 add.
+    case NormalizeMode::Rsqrt0: return {/*add*/ 3, /*mul*/ 6};
+    case NormalizeMode::Rsqrt1: return {4, 10};
+    default: return {5, 13};
+  }
+}
+
+Ops normalize_ops_per_span(NormalizeMode mode) {
+  // R_0 = |N_0|² and δ_0 = 2 N_0·ΔN_H + c/2, once per span.
+  if (mode == NormalizeMode::ForwardDifference) return {/*add*/ 5, /*mul*/ 8};
+  return {};
+}
+
+void NormalizeKernel::process(SpanPacket& p) {
+  const TriangleSetup& t = *p.tri;
+  const float dh[3] = {t.n[0].ax, t.n[1].ax, t.n[2].ax};
+  normalize_span(p.n[0], p.n[1], p.n[2], p.count, dh, t.c, mode_);
+  ops_ += normalize_ops_per_pixel(mode_) * uint64_t(p.count);
+  if (p.count > 0) ops_ += normalize_ops_per_span(mode_);
+}
+
+}  // namespace modules

@@ -1,0 +1,118 @@
+#pragma once
+// Normalization of the interpolated normal, in five variants (normal-increments paper,
+// formulas (13)–(16), and the fast inverse square roots a designer would weigh):
+//
+//   exact               r = x² + y² + z²; N · (1 / sqrt(r))
+//   forward-difference  r by second-order differences along the packet:
+//                         R_0 = |N_0|², δ_0 = 2 N_0·ΔN_H + |ΔN_H|², R_{n+1} = R_n + δ_n,
+//                         δ_{n+1} = δ_n + c, c = 2|ΔN_H|² (from setup);
+//                       two additions per pixel and no multiplication, then N · rsqrt(r)
+//   rsqrt0|1|2          r direct; the bit-level inverse square root estimate
+//                       (one table-like look-up) refined by 0, 1 or 2 Newton steps
+//                       y ← y (3/2 − r/2 · y²)
+//
+// The kernels are templates over the number type, so that a testbench can run them on
+// Counted<float> and check the operation counts declared here.
+#include <cstdint>
+#include <cstring>
+#include <string>
+
+#include "modules/common/packet.hpp"
+
+namespace modules {
+
+enum class NormalizeMode { Exact, ForwardDifference, Rsqrt0, Rsqrt1, Rsqrt2 };
+NormalizeMode parse_normalize_mode(const std::string& name);
+
+// The fast inverse square root: an estimate from the float's bits (the exponent
+// halved and negated, a magic constant correcting the mantissa), then Newton steps.
+template <class T>
+float rsqrt_estimate(T r) {
+  float rf = float(value(r)), yf;
+  uint32_t bits;
+  std::memcpy(&bits, &rf, sizeof bits);
+  bits = 0x5f3759dfu - (bits >> 1);  // one integer subtraction (the shift is wiring)
+  std::memcpy(&yf, &bits, sizeof yf);
+  return yf;
+}
+template <class T>
+T fast_rsqrt(T r, int newton_steps) {
+  T y = rsqrt_estimate(r);
+  if (newton_steps == 0) return y;
+  const T half_r = T(0.5f) * r;
+  for (int i = 0; i < newton_steps; ++i) y = y * (T(1.5f) - half_r * y * y);
+  return y;
+}
+template <class T>
+Counted<T> fast_rsqrt(Counted<T> r, int newton_steps) {
+  tally_counted<T>(Ops{/*add*/ 1});
+  Counted<T> y = rsqrt_estimate(r.v);
+  if (newton_steps == 0) return y;
+  const Counted<T> half_r = Counted<T>(T(0.5f)) * r;
+  for (int i = 0; i < newton_steps; ++i) y = y * (Counted<T>(T(1.5f)) - half_r * y * y);
+  return y;
+}
+
+// One pixel: scales n to unit length given its radicand r = |n|².
+template <class T>
+void scale_by_rsqrt(T n[3], T r, NormalizeMode mode) {
+  T s;
+  switch (mode) {
+    case NormalizeMode::Exact: s = T(1.0f) / sqrt_op(r); break;
+    case NormalizeMode::ForwardDifference: s = rsqrt_op(r); break;
+    case NormalizeMode::Rsqrt0: s = fast_rsqrt(r, 0); break;
+    case NormalizeMode::Rsqrt1: s = fast_rsqrt(r, 1); break;
+    default: s = fast_rsqrt(r, 2); break;
+  }
+  n[0] = n[0] * s;
+  n[1] = n[1] * s;
+  n[2] = n[2] * s;
+}
+
+template <class T>
+T radicand(const T n[3]) {
+  return n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+}
+
+// Normalizes the `count` normals of a span whose normals step by dh (ΔN_H) from one
+// pixel to the next; c = 2|ΔN_H|².
+template <class T>
+void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, NormalizeMode mode) {
+  if (mode == NormalizeMode::ForwardDifference) {
+    if (count == 0) return;
+    const T n0[3] = {nx[0], ny[0], nz[0]};
+    T r = radicand(n0);
+    T delta = T(2.0f) * (n0[0] * dh[0] + n0[1] * dh[1] + n0[2] * dh[2]) + T(0.5f) * c;
+    for (int i = 0; i < count; ++i) {
+      T n[3] = {nx[i], ny[i], nz[i]};
+      scale_by_rsqrt(n, r, mode);
+      nx[i] = n[0], ny[i] = n[1], nz[i] = n[2];
+      r = r + delta;
+      delta = delta + c;
+    }
+    return;
+  }
+  for (int i = 0; i < count; ++i) {
+    T n[3] = {nx[i], ny[i], nz[i]};
+    scale_by_rsqrt(n, radicand(n), mode);
+    nx[i] = n[0], ny[i] = n[1], nz[i] = n[2];
+  }
+}
+
+// Operations per pixel and per packet (span), as the code above performs them.
+Ops normalize_ops_per_pixel(NormalizeMode mode);
+Ops normalize_ops_per_span(NormalizeMode mode);
+
+class NormalizeKernel {
+ public:
+  explicit NormalizeKernel(NormalizeMode mode) : mode_(mode) {}
+  void process(SpanPacket& p);
+  const Ops& ops() const { return ops_; }
+  NormalizeMode mode() const { return mode_; }
+
+ private:
+  NormalizeMode mode_;
+  Ops ops_;
+};
+
+}  // namespace modules

@@ -1,0 +1,114 @@
+#pragma once
+// Triangle setup (normal-increments paper, "Setup, once per triangle"): for each
+// triangle that survives clipping and covers a pixel, the plane equations of its
+// attributes over the screen and the constant increments of the normal,
+//
+//   N2 − N1 = ΔN_H (x2 − x1) + ΔN_V (y2 − y1)
+//   N3 − N1 = ΔN_H (x3 − x1) + ΔN_V (y3 − y1),     ΔN_D = ΔN_H + ΔN_V,
+//
+// solved per component with one shared reciprocal of the determinant; c = 2|ΔN_H|² for
+// the forward-difference radicand. In perspective mode the same is done for N/w and
+// 1/w. Vertex transformation, clipping and snapping follow core/coverage.hpp, the
+// convention shared with the golden model, and are not counted as setup operations.
+#include <vector>
+
+#include "modules/common/packet.hpp"
+
+namespace modules {
+
+// A plane through three vertices' values of one attribute, with the geometry terms
+// shared by all the planes of a triangle. Written over the number type T so that a
+// testbench can count its operations (ops_per_plane).
+template <class T>
+struct PlaneSolver {
+  T dx1, dy1, dx2, dy2;  // vertex 2 and 3 relative to vertex 1, in pixels
+  T inv_det;             // 1 / (dx1·dy2 − dx2·dy1)
+  T ox, oy;              // the reference pixel's centre relative to vertex 1
+
+  // Returns a0 (the value at the reference pixel), ax = ∂a/∂x, ay = ∂a/∂y.
+  void solve(T a1, T a2, T a3, T& a0, T& ax, T& ay) const {
+    const T da1 = a2 - a1, da2 = a3 - a1;
+    ax = (da1 * dy2 - da2 * dy1) * inv_det;
+    ay = (dx1 * da2 - dx2 * da1) * inv_det;
+    a0 = a1 + ax * ox + ay * oy;
+  }
+};
+constexpr Ops kOpsPerPlane{/*add*/ 6, /*mul*/ 8};
+
+class SetupKernel {
+ public:
+  SetupKernel(const core::Scene& scene, bool perspective);
+
+  // Calls emit(const TriangleSetup&) for every triangle of the scene that covers a
+  // pixel, in scene order (objects, then triangles, then clipped pieces).
+  template <class Emit>
+  void run(Emit&& emit);
+
+  const Ops& ops() const { return ops_; }
+  uint64_t triangles_in() const { return triangles_in_; }
+  uint64_t triangles_out() const { return triangles_out_; }
+  // The point lights, in the order of TriangleSetup::l (slot k is light point_lights()[k]).
+  const std::vector<int>& point_lights() const { return point_lights_; }
+
+ private:
+  struct Vertex {  // a vertex of a clipped piece: exact (double) from the clipper
+    glm::dvec2 screen;  // snapped, in pixels
+    double w;
+    glm::dvec3 position, normal;
+    glm::dvec2 uv;
+  };
+  bool setup(const Vertex v[3], const core::SnappedTriangle& coverage, TriangleSetup& out);
+
+  const core::Scene& scene_;
+  bool perspective_;
+  glm::dmat4 view_projection_;
+  std::vector<int> point_lights_;
+  bool local_viewer_;
+  Ops ops_;
+  uint64_t triangles_in_ = 0, triangles_out_ = 0;
+  TriangleSetup current_;
+};
+
+template <class Emit>
+void SetupKernel::run(Emit&& emit) {
+  const int width = scene_.camera.width, height = scene_.camera.height;
+  uint32_t id = 0;
+  for (size_t o = 0; o < scene_.objects.size(); ++o) {
+    const core::Object& object = scene_.objects[o];
+    const core::Mesh mesh = core::to_world(object);
+    current_.object = int(o);
+    current_.material = &scene_.materials[object.material];
+    for (const auto& t : mesh.triangles) {
+      ++triangles_in_;
+      const uint32_t idx[3] = {t.x, t.y, t.z};
+      glm::dvec4 clip[3];
+      for (int k = 0; k < 3; ++k) clip[k] = view_projection_ * glm::dvec4(mesh.positions[idx[k]], 1.0);
+      const auto poly = core::clip_triangle(clip[0], clip[1], clip[2]);
+      for (size_t p = 1; p + 1 < poly.size(); ++p) {
+        const core::ClipVertex* cv[3] = {&poly[0], &poly[p], &poly[p + 1]};
+        glm::dvec2 s[3];
+        for (int k = 0; k < 3; ++k) s[k] = glm::dvec2(core::to_screen(cv[k]->clip, width, height));
+        core::SnappedTriangle coverage;
+        if (!core::snap_triangle(s[0], s[1], s[2], width, height, coverage)) continue;
+        if (object.cull_back && !coverage.front_facing) continue;
+        Vertex v[3];
+        for (int k = 0; k < 3; ++k) {
+          // The snapped triangle may have reordered its vertices.
+          const core::ClipVertex& c = *cv[coverage.source[k]];
+          const glm::dvec3 b = c.bary;
+          v[k].screen = glm::dvec2(double(coverage.x[k]), double(coverage.y[k])) / double(core::kSubpixelScale);
+          v[k].w = c.clip.w;
+          v[k].position = b.x * mesh.positions[idx[0]] + b.y * mesh.positions[idx[1]] + b.z * mesh.positions[idx[2]];
+          v[k].normal = b.x * mesh.normals[idx[0]] + b.y * mesh.normals[idx[1]] + b.z * mesh.normals[idx[2]];
+          v[k].uv = b.x * mesh.uvs[idx[0]] + b.y * mesh.uvs[idx[1]] + b.z * mesh.uvs[idx[2]];
+        }
+        if (!setup(v, coverage, current_)) continue;
+        current_.id = id++;
+        ++triangles_out_;
+        emit(static_cast<const TriangleSetup&>(current_));
+      }
+    }
+  }
+}
+
+}  // namespace modules
