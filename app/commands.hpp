@@ -18,6 +18,7 @@ struct Command {
   std::function<int()> run;  // runs it once parsed; returns the exit code
 };
 
+Command add_render_command(CLI::App& app);
 Command add_reference_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
 

@@ -1,15 +1,26 @@
 // shadetlm: the SystemC/TLM-2.0 shading-pipeline model and its tools.
+#include <cstdlib>
 #include <iostream>
+
+#include <systemc>
 
 #include "app/commands.hpp"
 #include "core/input_error.hpp"
 #include "core/version.hpp"
 
+// libsystemc calls sc_main from its own main(); shadetlm has its own main and
+// starts the simulation itself (modules::render_systemc), so this is never run.
+int sc_main(int, char**) { return 1; }
+
 int main(int argc, char** argv) {
+  setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);  // keep stdout for results
+  // SystemC errors become exceptions (reported with exit code 1), warnings go to stderr.
+  sc_core::sc_report_handler::set_actions(sc_core::SC_ERROR, sc_core::SC_THROW);
+  sc_core::sc_report_handler::set_actions(sc_core::SC_WARNING, sc_core::SC_DISPLAY);
   CLI::App app{"shadetlm: a SystemC/TLM-2.0 model of a per-pixel shading pipeline"};
   app.set_version_flag("--version", core::kVersion);
   app.require_subcommand(1);
-  std::vector<app::Command> commands = {app::add_reference_command(app),
+  std::vector<app::Command> commands = {app::add_render_command(app), app::add_reference_command(app),
                                         app::add_compare_command(app)};
   try {
     app.parse(argc, argv);

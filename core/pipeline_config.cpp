@@ -12,7 +12,7 @@ using json = nlohmann::json;
 const std::vector<SettingSpec>& pipeline_settings() {
   // Read by the SystemC pipeline (`shadetlm render`); the golden model reads none of
   // them. docs/configuration.md documents each one (a test checks that it does).
-  static const std::vector<SettingSpec> table = {
+  static std::vector<SettingSpec> table = {
       {"clock_mhz", 500.0, {}, 1, 100000, "clock of every block, for simulated time"},
       {"number_format", "float32", {"float32"}, 0, 0, "arithmetic of the datapaths"},
       {"normal_interp.mode", "perspective", {"affine", "perspective"}, 0, 0,
@@ -20,6 +20,20 @@ const std::vector<SettingSpec>& pipeline_settings() {
       {"normalize.mode", "exact", {"exact", "forward-difference", "rsqrt0", "rsqrt1", "rsqrt2"},
        0, 0, "how the normal is normalized"},
   };
+  // Every block's timing: latency (cycles to its first result) and initiation interval
+  // (cycles per unit of work). Model defaults, not figures from the papers.
+  static const bool timing_added = [] {
+    const std::pair<const char*, std::pair<int, int>> blocks[] = {
+        {"setup", {16, 8}},         {"raster", {4, 1}},         {"normal_interp", {2, 1}},
+        {"normalize", {12, 1}},     {"vector_interp", {20, 1}}, {"texture_fetch", {8, 1}},
+        {"lighting", {10, 1}},      {"framebuffer", {2, 1}}};
+    for (const auto& [block, t] : blocks) {
+      table.push_back({std::string(block) + ".latency", t.first, {}, 0, 1000000, "latency in cycles"});
+      table.push_back({std::string(block) + ".ii", t.second, {}, 1, 1000000, "cycles per unit of work"});
+    }
+    return true;
+  }();
+  (void)timing_added;
   return table;
 }
 

@@ -1,13 +1,15 @@
 #pragma once
-// The SystemC side shared by every block: a TLM-2.0 target socket in, an initiator
-// socket out, and the timing and cost bookkeeping.
+// The SystemC side shared by the blocks: timing bookkeeping, statistics, and Stage<K>,
+// the thin TLM-2.0 module around a span kernel K.
 //
 // Timing model (docs/pipeline.md): each block has a latency L and an initiation
-// interval II (cycles per pixel, or per triangle for setup). Blocks are joined by
-// unbounded queues: a packet arriving at cycle t starts at max(t, the block's free
-// cycle), keeps the block busy for II·pixels cycles, and reaches the next block L
-// cycles after it started. Arrival cycles travel in the packet; the b_transport delay
-// annotation carries the same time, relative to the initiator's local time.
+// interval II (cycles per unit of work: a pixel, a walker step, a pixel-light, a
+// triangle). Blocks are joined by unbounded queues: a packet arriving at cycle t starts
+// at max(t, the cycle the block becomes free), keeps it busy II·work cycles, and
+// reaches the next block L cycles after it started. Arrival cycles travel in the
+// packet; the b_transport delay annotation carries the same time relative to the
+// initiator's local time (loosely timed, no wait() per pixel).
+#include <algorithm>
 #include <cstdint>
 #include <string>
 
@@ -17,12 +19,13 @@
 #include <tlm_utils/simple_target_socket.h>
 
 #include "modules/common/ops.hpp"
+#include "modules/common/packet.hpp"
 
 namespace modules {
 
 struct Timing {
   uint64_t latency = 1;  // cycles from a packet's start to its first result downstream
-  uint64_t ii = 1;       // cycles per pixel (initiation interval)
+  uint64_t ii = 1;       // cycles per unit of work (initiation interval)
 };
 
 struct BlockStats {
@@ -30,34 +33,86 @@ struct BlockStats {
   Ops ops;
 };
 
-class Block : public sc_core::sc_module {
+// A block's calendar: when it is free, how long it has been busy.
+class Schedule {
  public:
-  tlm_utils::simple_target_socket<Block> in;
-  tlm_utils::simple_initiator_socket_optional<Block> out;  // unbound at the last block
-
-  Block(sc_core::sc_module_name name, Timing timing, sc_core::sc_time clock_period);
-
-  const BlockStats& stats() const { return stats_; }
+  explicit Schedule(Timing t) : timing_(t) {}
+  // Books II·work cycles for work arriving at `arrival`; returns the cycle its first
+  // result reaches the next block.
+  uint64_t occupy(uint64_t arrival, uint64_t work) {
+    const uint64_t start = std::max(arrival, free_);
+    const uint64_t busy = timing_.ii * work;
+    free_ = start + busy;
+    busy_ += busy;
+    return start + timing_.latency;
+  }
+  uint64_t free_cycle() const { return free_; }
+  uint64_t busy_cycles() const { return busy_; }
   const Timing& timing() const { return timing_; }
-  uint64_t free_cycle() const { return free_; }  // when the block finishes its last packet
-  bool has_next() const { return out.size() > 0; }
-
- protected:
-  // Books `busy` cycles for work arriving at `arrival`; returns when its first result
-  // reaches the next block.
-  uint64_t occupy(uint64_t arrival, uint64_t busy);
-  // Sends a transaction to the next block, with the delay annotation of `cycle`.
-  void forward(tlm::tlm_generic_payload& trans, uint64_t cycle);
-
-  BlockStats stats_;
 
  private:
-  virtual void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) = 0;
-  void transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) { b_transport(trans, delay); }
-
   Timing timing_;
+  uint64_t free_ = 0, busy_ = 0;
+};
+
+// What every block reports, whatever its kind.
+class BlockInfo {
+ public:
+  virtual ~BlockInfo() = default;
+  virtual std::string block_name() const = 0;
+  virtual BlockStats stats() const = 0;
+  virtual const Schedule& schedule() const = 0;
+};
+
+// Forwards a transaction through `socket` with the delay annotation of `cycle`.
+template <class Socket>
+void forward(Socket& socket, tlm::tlm_generic_payload& trans, uint64_t cycle, const sc_core::sc_time& period) {
+  if (socket.size() == 0) return;  // the last block
+  const sc_core::sc_time at = period * double(cycle), now = sc_core::sc_time_stamp();
+  sc_core::sc_time delay = at > now ? at - now : sc_core::SC_ZERO_TIME;
+  socket->b_transport(trans, delay);
+}
+
+// The SystemC module around a span kernel: packets in, kernel, packets out.
+template <class Kernel>
+class Stage : public sc_core::sc_module, public BlockInfo {
+ public:
+  tlm_utils::simple_target_socket<Stage> in;
+  tlm_utils::simple_initiator_socket_optional<Stage> out;  // unbound at the last block
+
+  Stage(sc_core::sc_module_name name, Kernel& kernel, Timing timing, sc_core::sc_time period)
+      : sc_core::sc_module(name), in("in"), out("out"), kernel_(kernel), schedule_(timing), period_(period) {
+    in.register_b_transport(this, &Stage::b_transport);
+  }
+
+  std::string block_name() const override { return basename(); }
+  BlockStats stats() const override {
+    BlockStats s = stats_;
+    s.ops = kernel_.ops();
+    s.busy_cycles = schedule_.busy_cycles();
+    return s;
+  }
+  const Schedule& schedule() const override { return schedule_; }
+
+ private:
+  void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time&) {
+    SpanPacket& p = *reinterpret_cast<SpanPacket*>(trans.get_data_ptr());
+    if (kernel_.bypass(p)) {
+      ++stats_.bypassed;  // through the bypass wire: no work, no cycles
+    } else {
+      kernel_.process(p);
+      ++stats_.packets;
+      stats_.pixels += uint64_t(p.count);
+      p.cycle = schedule_.occupy(p.cycle, kernel_.work(p));
+    }
+    forward(out, trans, p.cycle, period_);
+    trans.set_response_status(tlm::TLM_OK_RESPONSE);
+  }
+
+  Kernel& kernel_;
+  Schedule schedule_;
   sc_core::sc_time period_;
-  uint64_t free_ = 0;
+  BlockStats stats_;
 };
 
 }  // namespace modules

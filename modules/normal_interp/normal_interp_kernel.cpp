@@ -49,7 +49,8 @@ void NormalInterpKernel::process(SpanPacket& p) {
   }
   x_ += p.count;
   steps_ += uint64_t(p.count);
-  ops_.add += 3 * (steps_ - steps_before);
+  last_steps_ = steps_ - steps_before;
+  ops_.add += 3 * last_steps_;
 }
 
 }  // namespace modules

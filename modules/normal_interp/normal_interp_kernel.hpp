@@ -22,6 +22,9 @@ class NormalInterpKernel {
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
   uint64_t steps() const { return steps_; }  // increments added, all kinds
+  // Work of the last packet: one step per pixel, hidden pixels and row changes included.
+  uint64_t work(const SpanPacket&) const { return last_steps_; }
+  bool bypass(const SpanPacket&) const { return false; }
 
  private:
   void step(float n[3], const float d[3]) {
@@ -36,7 +39,7 @@ class NormalInterpKernel {
   float row_n_[3] = {0, 0, 0}; // the normal there
   int x_ = 0;                  // the walker's position along the row
   float n_[3] = {0, 0, 0};     // the normal there
-  uint64_t steps_ = 0;
+  uint64_t steps_ = 0, last_steps_ = 0;
   Ops ops_;
 };
 

@@ -109,6 +109,8 @@ class NormalizeKernel {
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
   NormalizeMode mode() const { return mode_; }
+  uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }
+  bool bypass(const SpanPacket&) const { return false; }
 
  private:
   NormalizeMode mode_;

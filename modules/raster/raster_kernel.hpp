@@ -48,6 +48,9 @@ void RasterKernel::run(const TriangleSetup& t, Emit&& emit) {
     const auto [x_begin, x_end] = t.coverage.row_span(y);
     if (x_begin >= x_end) continue;
     ops_ += kOpsPerRow;
+    const uint64_t n = uint64_t(x_end - x_begin);
+    walked_ += n;  // counted as the row starts, so that a packet knows how far the walk got
+    ops_ += kOpsPerPixelWalked * n;
     float inv_w = t.inv_w.at(x_begin - t.x_ref, y - t.y_ref);
     float* depth = &inv_depth_[size_t(y) * width_];
     p.y = y;
@@ -77,9 +80,6 @@ void RasterKernel::run(const TriangleSetup& t, Emit&& emit) {
       ops_ += kOpsPerPixelVisible * uint64_t(p.count);
       emit(p);
     }
-    const uint64_t n = uint64_t(x_end - x_begin);
-    walked_ += n;
-    ops_ += kOpsPerPixelWalked * n;
   }
 }
 

@@ -26,7 +26,8 @@ bool SetupKernel::setup(const Vertex v[3], const core::SnappedTriangle& coverage
   t.coverage = coverage;
 
   PlaneSolver<float> ps;
-  ps.dx1 = float(v[1].screen.x - v[0].screen.x);  // exact: multiples of 1/256 pixel
+  // Differences in double, then float: the planes keep float's relative precision.
+  ps.dx1 = float(v[1].screen.x - v[0].screen.x);
   ps.dy1 = float(v[1].screen.y - v[0].screen.y);
   ps.dx2 = float(v[2].screen.x - v[0].screen.x);
   ps.dy2 = float(v[2].screen.y - v[0].screen.y);

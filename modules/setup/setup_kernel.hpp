@@ -52,7 +52,7 @@ class SetupKernel {
 
  private:
   struct Vertex {  // a vertex of a clipped piece: exact (double) from the clipper
-    glm::dvec2 screen;  // snapped, in pixels
+    glm::dvec2 screen;  // in pixels, exact (not snapped)
     double w;
     glm::dvec3 position, normal;
     glm::dvec2 uv;
@@ -96,7 +96,9 @@ void SetupKernel::run(Emit&& emit) {
           // The snapped triangle may have reordered its vertices.
           const core::ClipVertex& c = *cv[coverage.source[k]];
           const glm::dvec3 b = c.bary;
-          v[k].screen = glm::dvec2(double(coverage.x[k]), double(coverage.y[k])) / double(core::kSubpixelScale);
+          // Attribute planes come from the exact positions; only coverage is snapped
+          // (docs/pipeline.md: snapping the planes too tilts edge-on triangles).
+          v[k].screen = s[coverage.source[k]];
           v[k].w = c.clip.w;
           v[k].position = b.x * mesh.positions[idx[0]] + b.y * mesh.positions[idx[1]] + b.z * mesh.positions[idx[2]];
           v[k].normal = b.x * mesh.normals[idx[0]] + b.y * mesh.normals[idx[1]] + b.z * mesh.normals[idx[2]];

@@ -1,0 +1,31 @@
+#include "modules/framebuffer/framebuffer_kernel.hpp"
+
+#include <limits>
+
+namespace modules {
+
+FramebufferKernel::FramebufferKernel(const core::Scene& scene) : frame_(scene.camera.width, scene.camera.height) {
+  const float background[3] = {float(scene.background.r), float(scene.background.g), float(scene.background.b)};
+  const char* names[8] = {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z"};
+  const float fill[8] = {background[0], background[1], background[2], 0.0f,
+                         std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
+  for (int k = 0; k < 8; ++k) frame_.add(names[k], fill[k]);
+  for (int k = 0; k < 8; ++k) layer_[k] = frame_.at(names[k]).data();
+}
+
+void FramebufferKernel::process(SpanPacket& p) {
+  const size_t base = size_t(p.y) * frame_.width + p.x0;
+  for (int i = 0; i < p.count; ++i) {
+    const size_t at = base + i;
+    layer_[0][at] = p.rgb[0][i];
+    layer_[1][at] = p.rgb[1][i];
+    layer_[2][at] = p.rgb[2][i];
+    layer_[3][at] = 1.0f;
+    layer_[4][at] = p.w[i];
+    layer_[5][at] = p.n[0][i];
+    layer_[6][at] = p.n[1][i];
+    layer_[7][at] = p.n[2][i];
+  }
+}
+
+}  // namespace modules

@@ -1,0 +1,39 @@
+#pragma once
+// Colour intensity (bump-mapping paper, Fig. 1): Blinn-Phong with every light of the
+// scene and the material's colours, branch-free per pixel as a datapath computes it:
+//
+//   C = ambient ⊙ k_a ⊙ tex + Σ_lights radiance ⊙ (k_d ⊙ tex · max(0, N·L)
+//                                                 + k_s · [N·L > 0] max(0, N·H)^shininess)
+//
+// L and H come from vector_interp where they vary over the frame, else they are the
+// frame's constants. The power is one table look-up in hardware (powf here).
+#include <vector>
+
+#include "modules/common/packet.hpp"
+
+namespace modules {
+
+class LightingKernel {
+ public:
+  explicit LightingKernel(const core::Scene& scene);
+
+  void process(SpanPacket& p);
+  const Ops& ops() const { return ops_; }
+  uint64_t work(const SpanPacket& p) const { return uint64_t(p.count) * lights_.size(); }
+  bool bypass(const SpanPacket&) const { return false; }
+
+  Ops ops_per_pixel(bool textured) const;
+  Ops ops_per_span() const;
+
+ private:
+  struct Light {
+    float radiance[3];
+    bool l_varies, h_varies;      // read from the packet, else the constants below
+    float l[3], h[3];
+  };
+  std::vector<Light> lights_;
+  float ambient_[3];
+  Ops ops_;
+};
+
+}  // namespace modules

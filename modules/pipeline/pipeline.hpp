@@ -1,0 +1,84 @@
+#pragma once
+// The pipeline: the blocks a scene needs, chained in the order of the papers' figures,
+//
+//   setup ─► raster ─► normal_interp ─► normalize ─► [vector_interp] ─► [texture_fetch]
+//         ─► lighting ─► framebuffer
+//
+// run either as the SystemC/TLM-2.0 model (render_systemc) or as the same kernels in a
+// plain C++ loop (render_loop): the two give bit-identical frames, which shows that the
+// transaction-level wrapping changes nothing, and the loop is the speed baseline.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/frame.hpp"
+#include "core/scene.hpp"
+#include "modules/common/block.hpp"
+#include "modules/framebuffer/framebuffer_kernel.hpp"
+#include "modules/lighting/lighting_kernel.hpp"
+#include "modules/normal_interp/normal_interp_kernel.hpp"
+#include "modules/normalize/normalize_kernel.hpp"
+#include "modules/raster/raster_kernel.hpp"
+#include "modules/setup/setup_kernel.hpp"
+#include "modules/texture_fetch/texture_fetch_kernel.hpp"
+#include "modules/vector_interp/vector_interp_kernel.hpp"
+
+namespace modules {
+
+// The blocks in pipeline order (the names of their folders, settings and statistics).
+const std::vector<std::string>& block_names();
+
+struct Options {
+  bool perspective = true;
+  NormalizeMode normalize = NormalizeMode::Exact;
+  double clock_mhz = 500;
+  std::map<std::string, Timing> timing;  // by block name
+};
+// Reads the scene's pipeline section; throws core::InputError for what the pipeline
+// cannot model (more than kMaxLights lights).
+Options read_options(const core::Scene& scene);
+
+// The kernels of one frame, created for what the scene needs.
+struct Kernels {
+  Kernels(const core::Scene& scene, const Options& options);
+  SetupKernel setup;
+  RasterKernel raster;
+  NormalInterpKernel normal_interp;
+  NormalizeKernel normalize;
+  std::optional<VectorInterpKernel> vector_interp;  // only for point lights or a local viewer
+  std::optional<TextureFetchKernel> texture_fetch;  // only if a material has a texture
+  LightingKernel lighting;
+  FramebufferKernel framebuffer;
+};
+
+struct BlockReport {
+  std::string name;
+  BlockStats stats;
+  Timing timing;
+  uint64_t free_cycle = 0;  // when it finished its last work
+};
+
+struct RenderResult {
+  core::Frame frame;
+  std::string engine;  // "systemc" or "loop"
+  double wall_s = 0;
+  double clock_mhz = 0;
+  uint64_t frame_cycles = 0;  // 0 for the loop, which has no timing model
+  uint64_t triangles_in = 0, triangles_drawn = 0;
+  uint64_t pixels_walked = 0, pixels_hidden = 0, pixels_shaded = 0;
+  std::vector<BlockReport> blocks;  // elaborated blocks, in pipeline order
+
+  const BlockReport* bottleneck() const;  // the block with the most busy cycles
+  Ops total_ops() const;
+  nlohmann::json stats_json() const;
+};
+
+RenderResult render_loop(const core::Scene& scene);
+// Elaborates and simulates the SystemC pipeline: SystemC elaborates once per process,
+// so call this at most once per process.
+RenderResult render_systemc(const core::Scene& scene);
+
+}  // namespace modules

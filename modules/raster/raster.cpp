@@ -1,0 +1,37 @@
+#include "modules/raster/raster.hpp"
+
+namespace modules {
+
+Raster::Raster(sc_core::sc_module_name name, RasterKernel& kernel, Timing timing, sc_core::sc_time period)
+    : sc_core::sc_module(name), in("in"), out("out"), kernel_(kernel), schedule_(timing), period_(period) {
+  in.register_b_transport(this, &Raster::b_transport);
+  span_.set_command(tlm::TLM_WRITE_COMMAND);
+}
+
+BlockStats Raster::stats() const {
+  BlockStats s = stats_;
+  s.ops = kernel_.ops();
+  s.busy_cycles = schedule_.busy_cycles();
+  return s;
+}
+
+void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
+  const TriangleSetup& t = *reinterpret_cast<const TriangleSetup*>(trans.get_data_ptr());
+  const uint64_t arrival = uint64_t((sc_core::sc_time_stamp() + delay) / period_ + 0.5);
+  const uint64_t walked_before = kernel_.pixels_walked();
+  const uint64_t start = std::max(arrival, schedule_.free_cycle());
+  kernel_.run(t, [&](SpanPacket& p) {
+    // The walk has reached this packet's row: it leaves `latency` after that.
+    p.cycle = start + schedule_.timing().ii * (kernel_.pixels_walked() - walked_before) + schedule_.timing().latency;
+    ++stats_.packets;
+    stats_.pixels += uint64_t(p.count);
+    span_.set_data_ptr(reinterpret_cast<unsigned char*>(&p));
+    span_.set_data_length(sizeof(SpanPacket));
+    span_.set_address(uint64_t(p.y) << 32 | uint32_t(p.x0));
+    forward(out, span_, p.cycle, period_);
+  });
+  schedule_.occupy(arrival, kernel_.pixels_walked() - walked_before);
+  trans.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+}  // namespace modules

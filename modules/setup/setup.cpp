@@ -1,0 +1,39 @@
+#include "modules/setup/setup.hpp"
+
+namespace modules {
+
+Setup::Setup(sc_core::sc_module_name name, SetupKernel& kernel, Timing timing, sc_core::sc_time period)
+    : sc_core::sc_module(name), out("out"), kernel_(kernel), schedule_(timing), period_(period) {
+  SC_THREAD(run);
+}
+
+BlockStats Setup::stats() const {
+  BlockStats s = stats_;
+  s.ops = kernel_.ops();
+  s.busy_cycles = schedule_.busy_cycles();
+  return s;
+}
+
+void Setup::run() {
+  quantum_.reset();
+  tlm::tlm_generic_payload trans;
+  trans.set_command(tlm::TLM_WRITE_COMMAND);
+  uint64_t local_cycle = 0;
+  kernel_.run([&](const TriangleSetup& t) {
+    const uint64_t arrival = schedule_.occupy(local_cycle, 1);  // one triangle
+    ++stats_.packets;
+    trans.set_data_ptr(reinterpret_cast<unsigned char*>(const_cast<TriangleSetup*>(&t)));
+    trans.set_data_length(sizeof(TriangleSetup));
+    trans.set_address(t.id);
+    // The triangle reaches the raster at `arrival`: the raster reads it from there.
+    sc_core::sc_time delay = period_ * double(arrival) - sc_core::sc_time_stamp();
+    out->b_transport(trans, delay);
+    local_cycle = schedule_.free_cycle();
+    quantum_.set(period_ * double(local_cycle) - sc_core::sc_time_stamp());
+    if (quantum_.need_sync()) quantum_.sync();
+  });
+  quantum_.sync();
+  done_ = true;
+}
+
+}  // namespace modules

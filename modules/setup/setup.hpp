@@ -1,0 +1,36 @@
+#pragma once
+// The setup block, the head of the pipeline: a SystemC thread that sets up each
+// triangle (SetupKernel) and sends it on as one transaction. It holds the pipeline's
+// one quantum keeper: local time advances by II cycles per triangle and the thread
+// yields to the kernel only when a quantum is used up.
+#include "modules/common/block.hpp"  // <systemc> first: the quantum keeper needs it
+#include "modules/setup/setup_kernel.hpp"
+
+#include <tlm_utils/tlm_quantumkeeper.h>
+
+namespace modules {
+
+class Setup : public sc_core::sc_module, public BlockInfo {
+ public:
+  tlm_utils::simple_initiator_socket<Setup> out;
+
+  SC_HAS_PROCESS(Setup);
+  Setup(sc_core::sc_module_name name, SetupKernel& kernel, Timing timing, sc_core::sc_time period);
+
+  std::string block_name() const override { return basename(); }
+  BlockStats stats() const override;
+  const Schedule& schedule() const override { return schedule_; }
+  bool done() const { return done_; }
+
+ private:
+  void run();
+
+  SetupKernel& kernel_;
+  Schedule schedule_;
+  sc_core::sc_time period_;
+  tlm_utils::tlm_quantumkeeper quantum_;
+  BlockStats stats_;
+  bool done_ = false;
+};
+
+}  // namespace modules
