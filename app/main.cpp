@@ -10,7 +10,7 @@
 
 // libsystemc calls sc_main from its own main(); shadetlm has its own main and
 // starts the simulation itself (modules::render_systemc), so this is never run.
-int sc_main(int, char**) { return 1; }
+extern "C" int sc_main(int, char**) { return 1; }
 
 int main(int argc, char** argv) {
   setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);  // keep stdout for results

@@ -17,6 +17,7 @@ struct Ops {
     fetch += o.fetch;
     return *this;
   }
+  Ops operator+(const Ops& o) const { return Ops(*this) += o; }
   Ops operator*(uint64_t n) const {
     return {add * n, mul * n, div * n, sqrt * n, rsqrt * n, lut * n, fetch * n};
   }

@@ -74,6 +74,24 @@ T radicand(const T n[3]) {
   return n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
 }
 
+// |N_n|² along a span N_n = N_0 + n·ΔN_H by second-order differences (formulas
+// (13)–(16)): seeded once per span, then two additions per pixel.
+template <class T>
+class RadicandSequence {
+ public:
+  RadicandSequence(const T n0[3], const T dh[3], T c)
+      : r_(radicand(n0)), delta_(T(2.0f) * (n0[0] * dh[0] + n0[1] * dh[1] + n0[2] * dh[2]) + T(0.5f) * c), c_(c) {}
+  T next() {  // R_n, then advances to R_{n+1}
+    const T r = r_;
+    r_ = r_ + delta_;
+    delta_ = delta_ + c_;
+    return r;
+  }
+
+ private:
+  T r_, delta_, c_;
+};
+
 // Normalizes the `count` normals of a span whose normals step by dh (ΔN_H) from one
 // pixel to the next; c = 2|ΔN_H|².
 template <class T>
@@ -81,14 +99,11 @@ void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, Normaliz
   if (mode == NormalizeMode::ForwardDifference) {
     if (count == 0) return;
     const T n0[3] = {nx[0], ny[0], nz[0]};
-    T r = radicand(n0);
-    T delta = T(2.0f) * (n0[0] * dh[0] + n0[1] * dh[1] + n0[2] * dh[2]) + T(0.5f) * c;
+    RadicandSequence<T> radicands(n0, dh, c);
     for (int i = 0; i < count; ++i) {
       T n[3] = {nx[i], ny[i], nz[i]};
-      scale_by_rsqrt(n, r, mode);
+      scale_by_rsqrt(n, radicands.next(), mode);
       nx[i] = n[0], ny[i] = n[1], nz[i] = n[2];
-      r = r + delta;
-      delta = delta + c;
     }
     return;
   }
