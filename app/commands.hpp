@@ -19,6 +19,7 @@ struct Command {
 };
 
 Command add_render_command(CLI::App& app);
+Command add_bench_command(CLI::App& app);
 Command add_reference_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
 

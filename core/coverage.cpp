@@ -25,20 +25,28 @@ int64_t floor_div(int64_t a, int64_t b) {  // b > 0
 int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
 }  // namespace
 
-std::vector<ClipVertex> clip_triangle(const glm::dvec4& c0, const glm::dvec4& c1,
-                                      const glm::dvec4& c2) {
+ClipPolygon clip_triangle(const glm::dvec4& c0, const glm::dvec4& c1, const glm::dvec4& c2) {
+  ClipPolygon poly;
   for (const glm::dvec4* c : {&c0, &c1, &c2})
     for (int k = 0; k < 4; ++k)
-      if (!std::isfinite((*c)[k])) return {};  // nothing sensible to draw
-  std::vector<ClipVertex> poly = {{c0, {1, 0, 0}}, {c1, {0, 1, 0}}, {c2, {0, 0, 1}}};
-  std::vector<ClipVertex> next;
+      if (!std::isfinite((*c)[k])) return poly;  // nothing sensible to draw
+  poly.vertices[0] = {c0, {1, 0, 0}};
+  poly.vertices[1] = {c1, {0, 1, 0}};
+  poly.vertices[2] = {c2, {0, 0, 1}};
+  poly.count = 3;
+  // Most triangles are inside every plane: nothing to cut.
+  bool inside = true;
+  for (int plane = 0; plane < 6 && inside; ++plane)
+    for (const glm::dvec4* c : {&c0, &c1, &c2}) inside = inside && plane_distance(*c, plane) >= 0;
+  if (inside) return poly;
+  ClipPolygon next;
   for (int plane = 0; plane < 6 && !poly.empty(); ++plane) {
-    next.clear();
+    next.count = 0;
     for (size_t i = 0; i < poly.size(); ++i) {  // Sutherland–Hodgman
       const ClipVertex& a = poly[i];
       const ClipVertex& b = poly[(i + 1) % poly.size()];
       const double da = plane_distance(a.clip, plane), db = plane_distance(b.clip, plane);
-      if (da >= 0) next.push_back(a);
+      if (da >= 0) next.vertices[next.count++] = a;
       if ((da >= 0) != (db >= 0)) {
         // Always from the inside vertex towards the outside one, so that an edge
         // shared by two triangles (walked a→b in one, b→a in the other) is cut at
@@ -47,12 +55,12 @@ std::vector<ClipVertex> clip_triangle(const glm::dvec4& c0, const glm::dvec4& c1
         const ClipVertex& out = da >= 0 ? b : a;
         const double din = da >= 0 ? da : db, dout = da >= 0 ? db : da;
         const double t = din / (din - dout);
-        next.push_back({in.clip + (out.clip - in.clip) * t, in.bary + (out.bary - in.bary) * t});
+        next.vertices[next.count++] = {in.clip + (out.clip - in.clip) * t, in.bary + (out.bary - in.bary) * t};
       }
     }
-    poly.swap(next);
+    poly = next;
   }
-  if (poly.size() < 3) poly.clear();
+  if (poly.size() < 3) poly.count = 0;
   return poly;
 }
 

@@ -28,10 +28,21 @@ struct ClipVertex {
   glm::dvec3 bary;   // its weights on the original triangle's three vertices
 };
 
+// A clipped triangle: each of the six planes adds at most one vertex, so at most 9.
+// Fixed storage: clipping runs once per triangle and must not allocate.
+struct ClipPolygon {
+  std::array<ClipVertex, 9> vertices;
+  size_t count = 0;
+  size_t size() const { return count; }
+  bool empty() const { return count == 0; }
+  const ClipVertex& operator[](size_t i) const { return vertices[i]; }
+  const ClipVertex* begin() const { return vertices.data(); }
+  const ClipVertex* end() const { return vertices.data() + count; }
+};
+
 // The polygon left of triangle (c0, c1, c2) after clipping: empty, or 3 to 9
 // vertices in the triangle's winding. Fan it as (0, i, i+1).
-std::vector<ClipVertex> clip_triangle(const glm::dvec4& c0, const glm::dvec4& c1,
-                                      const glm::dvec4& c2);
+ClipPolygon clip_triangle(const glm::dvec4& c0, const glm::dvec4& c1, const glm::dvec4& c2);
 
 // Clip space → screen: (x, y) in pixels, z = z_ndc.
 glm::dvec3 to_screen(const glm::dvec4& clip, int width, int height);

@@ -13,6 +13,7 @@ packages=(
   libstb-dev          # PNG/JPEG in and out
   nlohmann-json3-dev  # scene files
   libcli11-dev        # command line
+  valgrind            # scripts/bench.sh: instruction counts
 )
 
 missing=()

@@ -48,30 +48,34 @@ void LightingKernel::process(SpanPacket& p) {
       kd[k][c] = lights_[k].radiance[c] * float(m.diffuse[c]);
       ks[k][c] = lights_[k].radiance[c] * float(m.specular[c]);
     }
-  for (int i = 0; i < p.count; ++i) {
-    const float n[3] = {p.n[0][i], p.n[1][i], p.n[2][i]};
-    float tex[3] = {1, 1, 1};
-    float rgb[3] = {ambient[0], ambient[1], ambient[2]};
-    if (textured)
-      for (int c = 0; c < 3; ++c) tex[c] = p.tex[c][i], rgb[c] = rgb[c] * tex[c];
-    for (size_t k = 0; k < lights_.size(); ++k) {
-      const Light& s = lights_[k];
-      float l[3], h[3];
-      for (int c = 0; c < 3; ++c) {
-        l[c] = s.l_varies ? p.l[k][c][i] : s.l[c];
-        h[c] = s.h_varies ? p.h[k][c][i] : s.h[c];
-      }
-      const float n_dot_l = dot3(n, l), n_dot_h = dot3(n, h);
-      const float diffuse = n_dot_l > 0 ? n_dot_l : 0.0f;
-      const float power = std::pow(n_dot_h > 0 ? n_dot_h : 0.0f, shininess);
-      // No highlight from a light behind the surface (and none where H is undefined).
-      const float specular = n_dot_l > 0 && n_dot_h > 0 ? power : 0.0f;
-      for (int c = 0; c < 3; ++c) {
-        const float d = textured ? kd[k][c] * tex[c] : kd[k][c];
-        rgb[c] += d * diffuse + ks[k][c] * specular;
-      }
+  // Lights outer, pixels inner: straight pixel loops over the packet's arrays, which
+  // the compiler vectorizes; each pixel's arithmetic is the formula above, in order.
+  const int count = p.count;
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < count; ++i) p.rgb[c][i] = textured ? ambient[c] * p.tex[c][i] : ambient[c];
+  float n_dot_l[kSpanMax], n_dot_h[kSpanMax];
+  for (size_t k = 0; k < lights_.size(); ++k) {
+    const Light& s = lights_[k];
+    for (int i = 0; i < count; ++i) {
+      const float n[3] = {p.n[0][i], p.n[1][i], p.n[2][i]};
+      const float l[3] = {s.l_varies ? p.l[k][0][i] : s.l[0], s.l_varies ? p.l[k][1][i] : s.l[1],
+                          s.l_varies ? p.l[k][2][i] : s.l[2]};
+      const float h[3] = {s.h_varies ? p.h[k][0][i] : s.h[0], s.h_varies ? p.h[k][1][i] : s.h[1],
+                          s.h_varies ? p.h[k][2][i] : s.h[2]};
+      n_dot_l[i] = dot3(n, l);
+      n_dot_h[i] = dot3(n, h);
     }
-    for (int c = 0; c < 3; ++c) p.rgb[c][i] = rgb[c];
+    // No highlight from a light behind the surface (and none where H is undefined).
+    // Hardware looks the power up for every pixel (counted so); the model skips the
+    // call whose result the select would discard.
+    for (int i = 0; i < count; ++i)
+      n_dot_h[i] = n_dot_l[i] > 0 && n_dot_h[i] > 0 ? std::pow(n_dot_h[i], shininess) : 0.0f;
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < count; ++i) {
+        const float diffuse = n_dot_l[i] > 0 ? n_dot_l[i] : 0.0f;
+        const float d = textured ? kd[k][c] * p.tex[c][i] : kd[k][c];
+        p.rgb[c][i] += d * diffuse + ks[k][c] * n_dot_h[i];
+      }
   }
   ops_ += ops_per_pixel(textured) * uint64_t(p.count);
   if (p.count > 0) ops_ += ops_per_span();

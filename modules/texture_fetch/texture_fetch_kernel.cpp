@@ -1,5 +1,6 @@
 #include "modules/texture_fetch/texture_fetch_kernel.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace modules {
@@ -31,12 +32,22 @@ void TextureFetchKernel::process(SpanPacket& p) {
     }
     const float fs = std::floor(s), fr = std::floor(r);
     const float a = s - fs, b = r - fr;
-    const int x = int(fs), y = int(fr);
-    const glm::dvec4 t00 = tex.texel(x, y), t10 = tex.texel(x + 1, y);
-    const glm::dvec4 t01 = tex.texel(x, y + 1), t11 = tex.texel(x + 1, y + 1);
+    // The texel addresses of core::Texture::texel: s, r are now within one texel of
+    // the texture, so the wrap is a compare (repeat) or a clamp.
+    int x0 = int(fs), y0 = int(fr), x1 = x0 + 1, y1 = y0 + 1;
+    if (tex.wrap == core::Wrap::Repeat) {
+      x1 = x1 == tex.width ? 0 : x1;
+      y1 = y1 == tex.height ? 0 : y1;
+    } else {
+      x0 = std::clamp(x0, 0, tex.width - 1), x1 = std::clamp(x1, 0, tex.width - 1);
+      y0 = std::clamp(y0, 0, tex.height - 1), y1 = std::clamp(y1, 0, tex.height - 1);
+    }
+    const glm::vec4* row0 = &tex.texels[size_t(y0) * tex.width];
+    const glm::vec4* row1 = &tex.texels[size_t(y1) * tex.width];
+    const glm::vec4 t00 = row0[x0], t10 = row0[x1], t01 = row1[x0], t11 = row1[x1];
     for (int c = 0; c < 3; ++c) {
-      const float top = float(t00[c]) + (float(t10[c]) - float(t00[c])) * a;
-      const float bottom = float(t01[c]) + (float(t11[c]) - float(t01[c])) * a;
+      const float top = t00[c] + (t10[c] - t00[c]) * a;
+      const float bottom = t01[c] + (t11[c] - t01[c]) * a;
       p.tex[c][i] = top + (bottom - top) * b;
     }
   }

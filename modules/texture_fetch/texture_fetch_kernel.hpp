@@ -21,7 +21,8 @@ class TextureFetchKernel {
   bool bypass(const SpanPacket& p) const { return p.tri->material->texture < 0; }
 
   // uv (2 mul, 2 add), texel coordinates (2 mul, 3 add), fractions (2 add), four
-  // texel reads, three bilinear blends of 3 lerps (9 mul, 18 add).
+  // texel reads, three bilinear blends of 3 lerps (9 mul, 18 add). Wrapping far
+  // coordinates is integer masking in hardware (power-of-two sizes): not counted.
   static constexpr Ops kOpsPerPixel{/*add*/ 25, /*mul*/ 13, 0, 0, 0, 0, /*fetch*/ 4};
   static constexpr Ops kOpsPerSpan{/*add*/ 4, /*mul*/ 4};  // two plane seeds
 

@@ -1,0 +1,35 @@
+// shadetlm bench [SCENE] [--set key=value ...]: the SystemC pipeline against the same
+// kernels in a plain loop, measured in one run (these machines are noisy): a warm-up
+// loop (discarded: first touches of memory), loop, SystemC, loop; the ratio is
+// SystemC's time over the two loops' mean.
+#include <iostream>
+
+#include "app/commands.hpp"
+#include "modules/pipeline/pipeline.hpp"
+
+namespace app {
+
+Command add_bench_command(CLI::App& app) {
+  auto opt = std::make_shared<SceneOptions>();
+  CLI::App* cmd = app.add_subcommand("bench", "time the SystemC pipeline against the plain kernel loop");
+  opt->add_to(*cmd);
+  return {cmd, [opt]() {
+            const core::Scene scene = opt->load();
+            modules::render_loop(scene);  // warm-up
+            const modules::RenderResult first = modules::render_loop(scene);
+            const modules::RenderResult systemc = modules::render_systemc(scene);
+            const modules::RenderResult second = modules::render_loop(scene);
+            const double loop_s = (first.wall_s + second.wall_s) / 2;
+            const double pixels = double(systemc.pixels_shaded);
+            std::cout << "bench: " << scene.file << ", " << scene.camera.width << "x" << scene.camera.height
+                      << ", " << systemc.pixels_shaded << " shaded pixels\n"
+                      << "  loop:    " << first.wall_s << " s, " << second.wall_s << " s  ("
+                      << loop_s / pixels * 1e9 << " ns per shaded pixel)\n"
+                      << "  systemc: " << systemc.wall_s << " s  (" << systemc.wall_s / pixels * 1e9
+                      << " ns per shaded pixel)\n"
+                      << "  ratio systemc / loop: " << systemc.wall_s / loop_s << "\n";
+            return 0;
+          }};
+}
+
+}  // namespace app
