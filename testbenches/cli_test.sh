@@ -68,6 +68,25 @@ check set-then-scene 0 "$bin" reference --set camera.resolution=[32,24] "$src/sc
 check bad-option 2 "$bin" reference --frobnicate
 check no-command 2 "$bin"
 
+# The SystemC pipeline: frame, preview and statistics, the same frame as the kernel
+# loop, and bad input stopped before anything is written.
+check render 0 "$bin" render -o "$tmp/p.exr" --preview "$tmp/p.png" --stats "$tmp/p.json" --compare-reference
+expect_output render "coverage mismatches: 0"
+[[ -s $tmp/p.exr && -s $tmp/p.png && -s $tmp/p.json ]] && ((passes++)) || { echo "FAIL render: missing output"; ((failures++)); }
+grep -q '"bottleneck"' "$tmp/p.json" && grep -q '"utilization"' "$tmp/p.json" && grep -q '"rmse"' "$tmp/p.json" \
+  && ((passes++)) || { echo "FAIL render: statistics lack fields"; ((failures++)); }
+check render-loop 0 "$bin" render --engine loop -o "$tmp/l.exr"
+check loop-equals-systemc 0 "$bin" compare "$tmp/l.exr" "$tmp/p.exr" --fail 0
+check render-bad-mode 2 "$bin" render -o "$tmp/bad4.exr" --stats "$tmp/bad4.json" --set pipeline.normalize.mode=fast
+expect_no_file render-bad-mode "$tmp/bad4.exr"
+expect_no_file render-bad-mode "$tmp/bad4.json"
+nine_lights=$(printf '{"type":"directional","direction":[0,-1,0]},%.0s' 1 2 3 4 5 6 7 8)
+check render-too-many-lights 2 "$bin" render -o "$tmp/bad5.exr" --set "lights=[${nine_lights}{\"type\":\"point\",\"position\":[0,1,0]}]"
+expect_output render-too-many-lights "at most 8 lights"
+expect_no_file render-too-many-lights "$tmp/bad5.exr"
+check bench 0 "$bin" bench --set camera.resolution=[64,36]
+expect_output bench "ratio systemc / loop"
+
 # A mesh through assimp, from the scenes folder.
 check mesh 0 "$bin" reference "$src/scenes/knot.json" -o "$tmp/knot.exr" --set camera.resolution=[96,64]
 
