@@ -1,0 +1,118 @@
+// Testbench of lighting (bump-mapping paper, Fig. 1, "colour intensity"): packets of
+// random unit normals, light and halfway vectors through the SystemC block, against
+// Blinn-Phong computed here in double precision from the same inputs.
+//
+// Tolerance per channel, derived from float rounding (u = 2⁻²⁴): each dot product is
+// off by at most 3u (|N| = |L| = 1); a product or sum adds u. The power x^s turns an
+// input error e into a relative error of s·e/x, plus powf's own (a few u). So a light
+// contributes at most |k_d·tex|·(4u·N·L + 2u) + |k_s|·x^s·(s·4u/x + 8u), the ambient
+// term 2u·|ambient|, and the sum of the terms one u each.
+#include <random>
+
+#include "modules/lighting/lighting_kernel.hpp"
+#include "systemc_harness.hpp"
+
+TEST_CASE("lighting: Blinn-Phong of every light, against double precision", "[lighting][systemc]") {
+  const double u = std::ldexp(1.0, -24);
+  core::Scene scene;
+  scene.camera.local_viewer = true;  // H varies per pixel for every light
+  scene.ambient = {0.1, 0.05, 0.2};
+  core::Light sun, lamp, spot;
+  sun.direction = glm::normalize(glm::dvec3(-1, -2, -1));
+  sun.color = {1, 0.9, 0.8};
+  lamp.type = spot.type = core::Light::Type::Point;
+  lamp.intensity = 2;
+  spot.color = {0.2, 0.4, 1};
+  scene.lights = {sun, lamp, spot};
+  std::vector<core::Material> materials(3);
+  materials[0].shininess = 1;
+  materials[1].shininess = 40;
+  materials[2].shininess = 200;
+  materials[2].texture = 0;  // textured: the packet's tex modulates ambient and diffuse
+  modules::LightingKernel kernel(scene);
+
+  std::mt19937 rng(13);
+  std::normal_distribution<float> g;
+  std::uniform_real_distribution<float> unit(0, 1);
+  auto random_unit = [&](float v[3]) {
+    const glm::dvec3 d = glm::normalize(glm::dvec3(g(rng), g(rng), g(rng)));
+    for (int c = 0; c < 3; ++c) v[c] = float(d[c]);
+  };
+  modules::TriangleSetup tri;
+  modules::SpanPacket packet;
+  double worst_ratio = 0;
+  uint64_t lit = 0, highlights = 0;
+
+  auto produce = [&](std::function<void(modules::SpanPacket&)> send) {
+    for (int k = 0; k < 300; ++k) {
+      core::Material& m = materials[k % 3];
+      for (int c = 0; c < 3; ++c) m.ambient[c] = unit(rng), m.diffuse[c] = unit(rng), m.specular[c] = unit(rng);
+      tri.material = &m;
+      packet.tri = &tri;
+      packet.count = 1 + k % modules::kSpanMax;
+      for (int i = 0; i < packet.count; ++i) {
+        float n[3], v[3];
+        random_unit(n);
+        random_unit(v);  // a viewer direction, to build H from
+        for (int c = 0; c < 3; ++c) packet.n[c][i] = n[c], packet.tex[c][i] = unit(rng);
+        for (int li = 0; li < 3; ++li) {
+          float l[3];
+          if (li == 0) {
+            for (int c = 0; c < 3; ++c) l[c] = float(-sun.direction[c]);
+          } else {
+            random_unit(l);
+            // Half of the point-light directions near N: highlights get exercised.
+            if (i % 2) for (int c = 0; c < 3; ++c) l[c] = n[c] + 0.2f * l[c];
+          }
+          glm::dvec3 L(l[0], l[1], l[2]);
+          L = glm::normalize(L);
+          const glm::dvec3 H = glm::normalize(L + glm::dvec3(v[0], v[1], v[2]));
+          for (int c = 0; c < 3; ++c) packet.l[li][c][i] = float(L[c]), packet.h[li][c][i] = float(H[c]);
+        }
+      }
+      send(packet);
+    }
+  };
+  auto check = [&](const modules::SpanPacket& p) {
+    const core::Material& m = *p.tri->material;
+    const bool textured = m.texture >= 0;
+    for (int i = 0; i < p.count; ++i) {
+      const glm::dvec3 N(p.n[0][i], p.n[1][i], p.n[2][i]);
+      const glm::dvec3 tex = textured ? glm::dvec3(p.tex[0][i], p.tex[1][i], p.tex[2][i]) : glm::dvec3(1);
+      glm::dvec3 want = scene.ambient * m.ambient * tex, bound = 2 * u * want;
+      for (int li = 0; li < 3; ++li) {
+        const glm::dvec3 L(p.l[li][0][i], p.l[li][1][i], p.l[li][2][i]);
+        const glm::dvec3 H(p.h[li][0][i], p.h[li][1][i], p.h[li][2][i]);
+        const glm::dvec3 rad = scene.lights[li].radiance();
+        const double nl = glm::dot(N, L), nh = glm::dot(N, H);
+        const double d = std::max(nl, 0.0);
+        const double s = nl > 0 && nh > 0 ? std::pow(nh, m.shininess) : 0.0;
+        lit += nl > 0;
+        highlights += s > 0.5;
+        want += rad * (m.diffuse * tex * d + m.specular * s);
+        bound += rad * m.diffuse * tex * (4 * u * d + 2 * u) +
+                 rad * m.specular * s * (s > 0 ? m.shininess * 4 * u / nh + 8 * u : 0.0);
+        // At N·L ≈ 0 or N·H ≈ 0 the float select may land on the other side: allow
+        // the term it switches.
+        if (std::abs(nl) < 4 * u) bound += rad * (m.diffuse * tex * std::abs(nl) + m.specular * (nh > 0 ? std::pow(nh, m.shininess) : 0.0));
+      }
+      for (int c = 0; c < 3; ++c) {
+        const double err = std::abs(double(p.rgb[c][i]) - want[c]);
+        const double b = bound[c] + 4 * u * want[c] + 1e-30;
+        REQUIRE(err <= b);
+        worst_ratio = std::max(worst_ratio, err / b);
+      }
+    }
+  };
+  CHECK(test::run_stage(kernel, produce, check) == 300);
+  INFO("worst error / bound " << worst_ratio << ", lit " << lit << ", highlights " << highlights);
+  CHECK(worst_ratio > 0);
+  CHECK(lit > 1000);
+  CHECK(highlights > 100);
+  // Operations: the declared datapath, 1 table look-up (the power) per pixel and light.
+  uint64_t pixels = 0, textured_pixels = 0;
+  for (int k = 0; k < 300; ++k) pixels += 1 + k % modules::kSpanMax, textured_pixels += k % 3 == 2 ? 1 + k % modules::kSpanMax : 0;
+  CHECK(kernel.ops().lut == 3 * pixels);
+  CHECK(kernel.ops().mul == kernel.ops_per_pixel(false).mul * (pixels - textured_pixels) +
+                                kernel.ops_per_pixel(true).mul * textured_pixels + kernel.ops_per_span().mul * 300);
+}
