@@ -114,6 +114,29 @@ TEST_CASE("normal_interp: constant increments equal direct interpolation within 
   CHECK(pixels > 100000);
   CHECK(hidden_steps > 10000);   // the occluders really made the walker skip
   CHECK(worst_ratio > 0);        // rounding happened: the check is not vacuous
-  // Operations: three additions per step, nothing else.
-  CHECK(kernel.ops() == modules::Ops{3 * kernel.steps()});
+}
+
+TEST_CASE("normal_interp: one step per pixel and row, three additions per step", "[normal_interp]") {
+  // A triangle with a vertical left edge through pixel column 10 (x = 10.2): every row
+  // starts at x = 10, so the walker takes one ΔN_V step per row after the first and one
+  // ΔN_H step per pixel — counted here from the coverage alone, not from the kernel.
+  const glm::dvec2 s[3] = {{10.2, 10.2}, {10.2, 40.2}, {50.2, 10.2}};
+  const glm::dvec3 n[3] = {{0, 0, 1}, {0.5, 0, 1}, {0, 0.5, 1}};
+  modules::TriangleSetup t;
+  REQUIRE(make_setup(s, n, 1.0f, 0, t));
+  modules::RasterKernel raster(W, H);
+  modules::NormalInterpKernel kernel;
+  uint64_t pixels = 0, rows = 0;
+  raster.run(t, [&](modules::SpanPacket& p) {
+    CHECK(p.row_start == 10);
+    kernel.process(p);
+    pixels += uint64_t(p.count);
+  });
+  for (int y = t.coverage.y0; y <= t.coverage.y1; ++y) {
+    auto [b, e] = t.coverage.row_span(y);
+    rows += b < e;
+  }
+  REQUIRE(rows == 30);
+  CHECK(kernel.steps() == (rows - 1) + pixels);
+  CHECK(kernel.ops() == modules::Ops{3 * ((rows - 1) + pixels)});
 }

@@ -45,7 +45,9 @@ TEST_CASE("forward-difference radicand follows |N|² within its rounding bound, 
   }
   INFO("worst error / bound " << worst_ratio << ", worst relative error at pixel 4096 " << worst_rel_4096);
   CHECK(worst_ratio > 0);
-  CHECK(worst_rel_4096 > 1e-7);  // the growth is real: far above one rounding
+  // The growth is real: at pixel 4096 it is thousands of roundings (measured 6.8e-4
+  // relative on these spans; a sequence re-seeded or kept in double would be ~1e-7).
+  CHECK(worst_rel_4096 > 1e-4);
 }
 
 TEST_CASE("fast inverse square root: maximum relative error per Newton step count", "[normalize]") {

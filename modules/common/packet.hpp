@@ -28,6 +28,7 @@ struct TriangleSetup {
   int x_ref = 0, y_ref = 0;            // reference pixel: leftmost of the top covered row
 
   Plane inv_w;                         // 1/w, affine on screen
+  float inv_w_min = 0;                 // the smallest 1/w of the vertices (> 0)
   // The normal: N (affine mode) or N/w (perspective mode). n[k].ax and n[k].ay are the
   // paper's constant increments ΔN_H and ΔN_V; n[k].a0 is the seed at the reference pixel.
   Plane n[3];

@@ -21,8 +21,9 @@ void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& dela
   const uint64_t walked_before = kernel_.pixels_walked();
   const uint64_t start = std::max(arrival, schedule_.free_cycle());
   kernel_.run(t, [&](SpanPacket& p) {
-    // The walk has reached this packet's row: it leaves `latency` after that.
-    p.cycle = start + schedule_.timing().ii * (kernel_.pixels_walked() - walked_before) + schedule_.timing().latency;
+    // It leaves `latency` after the walk has passed its last pixel.
+    const uint64_t walked = kernel_.row_walked_before() - walked_before + uint64_t(p.x0 + p.count - p.row_start);
+    p.cycle = start + schedule_.timing().ii * walked + schedule_.timing().latency;
     ++stats_.packets;
     stats_.pixels += uint64_t(p.count);
     span_.set_data_ptr(reinterpret_cast<unsigned char*>(&p));

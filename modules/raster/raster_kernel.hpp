@@ -1,11 +1,16 @@
 #pragma once
 // Scanline traversal with an early depth test. Rows top to bottom, pixels left to
 // right, exactly the pixels of the shared coverage convention (core/coverage.hpp). Each
-// pixel's 1/w comes from its plane by one addition per step; a pixel is visible when
-// its 1/w is larger (nearer) than the depth buffer's, which it then replaces — so
-// hidden fragments never reach the shading blocks. Runs of visible pixels go out as
-// span packets of at most kSpanMax pixels, with w = 1/(1/w) for the blocks downstream
-// (the one reciprocal per pixel of perspective-correct interpolation).
+// pixel's 1/w comes from its plane by one addition per step, re-seeded from the plane
+// every kSpanMax pixels (so that rounding cannot build up along a long row). A pixel
+// centre that snapping covers just outside the triangle, beyond the plane's vanishing
+// line, gets 1/w ≤ 0 from the plane: it takes the triangle's smallest vertex 1/w
+// instead, as the golden model takes the triangle's nearest point there.
+// A pixel is visible when its 1/w is larger (nearer) than the depth buffer's, which it
+// then replaces — so hidden fragments never reach the shading blocks. Runs of visible
+// pixels go out as span packets of at most kSpanMax pixels, with w = 1/(1/w) for the
+// blocks downstream (the one reciprocal per pixel of perspective-correct
+// interpolation).
 #include <vector>
 
 #include "modules/common/packet.hpp"
@@ -22,22 +27,23 @@ class RasterKernel {
 
   const Ops& ops() const { return ops_; }
   uint64_t pixels_walked() const { return walked_; }
+  uint64_t row_walked_before() const { return row_before_; }  // walked before this row
   uint64_t pixels_hidden() const { return hidden_; }
   const std::vector<float>& depth_buffer() const { return inv_depth_; }  // 1/w, 0 = empty
 
-  // Per pixel walked: the 1/w step and the depth compare (a subtraction);
-  // per visible pixel, the reciprocal.
-  static constexpr Ops kOpsPerPixelWalked{/*add*/ 2};
+  // Per pixel walked: the 1/w step (compares are free, as everywhere); per visible
+  // pixel, the reciprocal; per seed (a row's first pixel, then every kSpanMax), the
+  // plane evaluated.
+  static constexpr Ops kOpsPerPixelWalked{/*add*/ 1};
   static constexpr Ops kOpsPerPixelVisible{0, 0, /*div*/ 1};
-  // Per row: the 1/w seed at the row's first pixel.
-  static constexpr Ops kOpsPerRow{/*add*/ 2, /*mul*/ 2};
+  static constexpr Ops kOpsPerSeed{/*add*/ 2, /*mul*/ 2};
 
  private:
   int width_, height_;
   std::vector<float> inv_depth_;
   SpanPacket packet_;
   Ops ops_;
-  uint64_t walked_ = 0, hidden_ = 0;
+  uint64_t walked_ = 0, hidden_ = 0, row_before_ = 0;
 };
 
 template <class Emit>
@@ -47,21 +53,23 @@ void RasterKernel::run(const TriangleSetup& t, Emit&& emit) {
   for (int y = t.coverage.y0; y <= t.coverage.y1; ++y) {
     const auto [x_begin, x_end] = t.coverage.row_span(y);
     if (x_begin >= x_end) continue;
-    ops_ += kOpsPerRow;
     const uint64_t n = uint64_t(x_end - x_begin);
-    walked_ += n;  // counted as the row starts, so that a packet knows how far the walk got
-    ops_ += kOpsPerPixelWalked * n;
-    float inv_w = t.inv_w.at(x_begin - t.x_ref, y - t.y_ref);
+    row_before_ = walked_;
+    walked_ += n;
+    ops_ += kOpsPerPixelWalked * n + kOpsPerSeed * ((n + kSpanMax - 1) / kSpanMax);
+    float inv_w = 0;
     float* depth = &inv_depth_[size_t(y) * width_];
     p.y = y;
     p.row_start = x_begin;
     p.count = 0;
     for (int x = x_begin; x < x_end; ++x, inv_w += t.inv_w.ax) {
-      if (inv_w > depth[x]) {
-        depth[x] = inv_w;
+      if ((x - x_begin) % kSpanMax == 0) inv_w = t.inv_w.at(x - t.x_ref, y - t.y_ref);
+      const float inv_w_pixel = inv_w > 0 ? inv_w : t.inv_w_min;
+      if (inv_w_pixel > depth[x]) {
+        depth[x] = inv_w_pixel;
         if (p.count == 0) p.x0 = x;
-        p.inv_w[p.count] = inv_w;
-        p.w[p.count] = 1.0f / inv_w;
+        p.inv_w[p.count] = inv_w_pixel;
+        p.w[p.count] = 1.0f / inv_w_pixel;
         if (++p.count == kSpanMax) {
           ops_ += kOpsPerPixelVisible * uint64_t(p.count);
           emit(p);

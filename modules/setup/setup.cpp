@@ -26,7 +26,10 @@ void Setup::run() {
     trans.set_data_length(sizeof(TriangleSetup));
     trans.set_address(t.id);
     // The triangle reaches the raster at `arrival`: the raster reads it from there.
-    sc_core::sc_time delay = period_ * double(arrival) - sc_core::sc_time_stamp();
+    // Never negative: the quantum keeper syncs to period·local_cycle ≤ period·arrival.
+    const sc_core::sc_time at = period_ * double(arrival);
+    sc_assert(at >= sc_core::sc_time_stamp());
+    sc_core::sc_time delay = at - sc_core::sc_time_stamp();
     out->b_transport(trans, delay);
     local_cycle = schedule_.free_cycle();
     quantum_.set(period_ * double(local_cycle) - sc_core::sc_time_stamp());

@@ -1,5 +1,8 @@
 #include "modules/setup/setup_kernel.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace modules {
 
 SetupKernel::SetupKernel(const core::Scene& scene, bool perspective)
@@ -31,10 +34,13 @@ bool SetupKernel::setup(const Vertex v[3], const core::SnappedTriangle& coverage
   ps.dy1 = float(v[1].screen.y - v[0].screen.y);
   ps.dx2 = float(v[2].screen.x - v[0].screen.x);
   ps.dy2 = float(v[2].screen.y - v[0].screen.y);
-  ps.inv_det = 1.0f / (ps.dx1 * ps.dy2 - ps.dx2 * ps.dy1);
+  const float det = ps.dx1 * ps.dy2 - ps.dx2 * ps.dy1;
+  if (!(det != 0 && std::isfinite(det))) return false;  // no plane through the pixels
+  ps.inv_det = 1.0f / det;
   ps.ox = float(t.x_ref + 0.5 - v[0].screen.x);
   ps.oy = float(t.y_ref + 0.5 - v[0].screen.y);
-  Ops ops{/*add*/ 5, /*mul*/ 2, /*div*/ 1};  // determinant, its reciprocal, the offsets
+  // Four differences, the determinant (2 mul, 1 add), its reciprocal, two offsets.
+  Ops ops{/*add*/ 7, /*mul*/ 2, /*div*/ 1};
 
   // Attributes at the vertices, divided by w where interpolation is perspective-correct.
   float inv_w[3];
@@ -49,6 +55,7 @@ bool SetupKernel::setup(const Vertex v[3], const core::SnappedTriangle& coverage
     ops.mul += 3;
   };
   plane(t.inv_w, inv_w[0], inv_w[1], inv_w[2]);
+  t.inv_w_min = std::min({inv_w[0], inv_w[1], inv_w[2]});
   for (int c = 0; c < 3; ++c) {
     if (perspective_)
       perspective_plane(t.n[c], v[0].normal[c], v[1].normal[c], v[2].normal[c]);

@@ -81,6 +81,11 @@ void SetupKernel::run(Emit&& emit) {
     for (const auto& t : mesh.triangles) {
       ++triangles_in_;
       const uint32_t idx[3] = {t.x, t.y, t.z};
+      // A triangle with no area in space has no plane to interpolate on (the golden
+      // model skips it too), even if snapping gives its screen image some area.
+      const glm::dvec3 ng = glm::cross(mesh.positions[idx[1]] - mesh.positions[idx[0]],
+                                       mesh.positions[idx[2]] - mesh.positions[idx[0]]);
+      if (!(glm::dot(ng, ng) > 0)) continue;
       glm::dvec4 clip[3];
       for (int k = 0; k < 3; ++k) clip[k] = view_projection_ * glm::dvec4(mesh.positions[idx[k]], 1.0);
       const auto poly = core::clip_triangle(clip[0], clip[1], clip[2]);

@@ -26,6 +26,9 @@ void TextureFetchKernel::process(SpanPacket& p) {
     if (tex.wrap == core::Wrap::Repeat) {
       s -= W * std::floor(s / W);
       r -= H * std::floor(r / H);
+      // A tiny negative s rounds to exactly W above: bring it back into [0, W).
+      if (s >= W) s -= W;
+      if (r >= H) r -= H;
     } else {
       s = std::fmin(std::fmax(s, -1.0f), W);
       r = std::fmin(std::fmax(r, -1.0f), H);
@@ -36,8 +39,8 @@ void TextureFetchKernel::process(SpanPacket& p) {
     // the texture, so the wrap is a compare (repeat) or a clamp.
     int x0 = int(fs), y0 = int(fr), x1 = x0 + 1, y1 = y0 + 1;
     if (tex.wrap == core::Wrap::Repeat) {
-      x1 = x1 == tex.width ? 0 : x1;
-      y1 = y1 == tex.height ? 0 : y1;
+      x0 = x0 >= tex.width ? x0 - tex.width : x0, y0 = y0 >= tex.height ? y0 - tex.height : y0;
+      x1 = x1 >= tex.width ? x1 - tex.width : x1, y1 = y1 >= tex.height ? y1 - tex.height : y1;
     } else {
       x0 = std::clamp(x0, 0, tex.width - 1), x1 = std::clamp(x1, 0, tex.width - 1);
       y0 = std::clamp(y0, 0, tex.height - 1), y1 = std::clamp(y1, 0, tex.height - 1);
