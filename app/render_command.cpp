@@ -66,14 +66,28 @@ Command add_render_command(CLI::App& app) {
             double reference_s = 0;
             if (opt->compare) stats["error"] = error_against_reference(r.frame, scene, &reference_s);
             describe(r.frame, scene, opt->scene, opt->engine == "loop" ? "pipeline-loop" : "pipeline");
-            write_frame(r.frame, opt->output, opt->preview);
-            if (!opt->stats.empty()) {
-              // The statistics also appear whole or not at all.
-              core::write_atomically(opt->stats, [&](const std::string& tmp) {
-                std::ofstream out(tmp);
+            // Frame, preview and statistics appear together or not at all: the
+            // statistics go to a temporary first and are renamed after the frame.
+            const std::string stats_tmp = opt->stats.empty() ? "" : core::temporary_path_for(opt->stats);
+            try {
+              if (!stats_tmp.empty()) {
+                std::ofstream out(stats_tmp);
                 out << stats.dump(2) << "\n";
                 if (!out) throw std::runtime_error(opt->stats + ": cannot write the statistics");
-              });
+              }
+              write_frame(r.frame, opt->output, opt->preview);
+            } catch (...) {
+              if (!stats_tmp.empty()) core::remove_quietly(stats_tmp);
+              throw;
+            }
+            if (!stats_tmp.empty()) {
+              try {
+                core::rename_into_place(stats_tmp, opt->stats);
+              } catch (...) {  // take the frame back: no output of a run that failed
+                core::remove_quietly(opt->output);
+                if (!opt->preview.empty()) core::remove_quietly(opt->preview);
+                throw;
+              }
             }
             std::cout << "render (" << r.engine << "): " << scene.file << ", " << scene.camera.width << "x"
                       << scene.camera.height << ", " << r.triangles_drawn << " triangles, " << r.pixels_shaded
