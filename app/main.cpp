@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   // SystemC errors become exceptions (reported with exit code 1), warnings go to stderr.
   sc_core::sc_report_handler::set_actions(sc_core::SC_ERROR, sc_core::SC_THROW);
   sc_core::sc_report_handler::set_actions(sc_core::SC_WARNING, sc_core::SC_DISPLAY);
+  sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);  // e.g. the VCD timescale
   CLI::App app{"shadetlm: a SystemC/TLM-2.0 model of a per-pixel shading pipeline"};
   app.set_version_flag("--version", core::kVersion);
   app.require_subcommand(1);

@@ -1,6 +1,8 @@
 // shadetlm render [SCENE] [-o frame.exr] [--preview frame.png] [--stats stats.json]
 //                 [--compare-reference] [--engine systemc|loop] [--set key=value ...]
 #include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -8,6 +10,7 @@
 
 #include "app/commands.hpp"
 #include "core/compare.hpp"
+#include "core/input_error.hpp"
 #include "modules/pipeline/pipeline.hpp"
 #include "reference/reference.hpp"
 
@@ -39,11 +42,29 @@ nlohmann::json error_against_reference(const core::Frame& frame, const core::Sce
 }
 }  // namespace
 
+// "x0,y0,x1,y1" (inclusive pixel bounds) and "i..j" (triangle ids, inclusive).
+void parse_region(const std::string& text, modules::TraceRegion& r) {
+  int v[4];
+  char end;
+  if (std::sscanf(text.c_str(), "%d,%d,%d,%d%c", &v[0], &v[1], &v[2], &v[3], &end) != 4 || v[0] > v[2] ||
+      v[1] > v[3] || v[0] < 0 || v[1] < 0)
+    throw core::InputError("--trace-region", text, "expected x0,y0,x1,y1 with 0 <= x0 <= x1 and 0 <= y0 <= y1");
+  r.x0 = v[0], r.y0 = v[1], r.x1 = v[2], r.y1 = v[3];
+}
+void parse_triangles(const std::string& text, modules::TraceRegion& r) {
+  unsigned long a, b;
+  char end;
+  if (std::sscanf(text.c_str(), "%lu..%lu%c", &a, &b, &end) != 2 || a > b || b > UINT32_MAX)
+    throw core::InputError("--trace-triangles", text, "expected i..j with i <= j");
+  r.triangle_first = uint32_t(a), r.triangle_last = uint32_t(b);
+}
+
 Command add_render_command(CLI::App& app) {
   struct Options {
     SceneOptions scene;
     std::string output = "out/frame.exr", preview, stats, engine = "systemc";
     bool compare = false;
+    std::string vcd, region, triangles, timeline;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("render", "render a scene through the SystemC/TLM-2.0 pipeline");
@@ -56,10 +77,31 @@ Command add_render_command(CLI::App& app) {
                   "systemc: the TLM-2.0 model; loop: the same kernels in a plain C++ loop (no timing)")
       ->check(CLI::IsMember({"systemc", "loop"}))
       ->capture_default_str();
+  cmd->add_option("--vcd", opt->vcd, "waveforms of the blocks (VCD), with a GTKWave view (.gtkw) beside them");
+  cmd->add_option("--trace-region", opt->region, "pixels traced into the VCD and the timeline: x0,y0,x1,y1");
+  cmd->add_option("--trace-triangles", opt->triangles, "triangles traced: i..j (ids in drawing order)");
+  cmd->add_option("--timeline", opt->timeline, "transaction timeline as Chrome trace-event JSON (Perfetto)");
   return {cmd, [opt]() {
             const core::Scene scene = opt->scene.load();
+            modules::Inspect inspect;
+            inspect.vcd = opt->vcd;
+            inspect.timeline = opt->timeline;
+            if (!opt->region.empty()) parse_region(opt->region, inspect.region), inspect.region_given = true;
+            if (!opt->triangles.empty()) {
+              if (!inspect.region_given)
+                inspect.region = {0, 0, scene.camera.width - 1, scene.camera.height - 1}, inspect.region_given = true;
+              parse_triangles(opt->triangles, inspect.region);
+            }
+            if (!inspect.vcd.empty() && (inspect.vcd.size() < 5 || inspect.vcd.substr(inspect.vcd.size() - 4) != ".vcd"))
+              throw core::InputError("--vcd", inspect.vcd, "the waveform file must end in .vcd");
+            if (opt->engine == "loop" && (!inspect.vcd.empty() || !inspect.timeline.empty()))
+              throw core::InputError("--engine", "loop", "the plain loop has no time: waveforms and timelines need systemc");
+            for (const std::string& path : {inspect.vcd, inspect.timeline}) {
+              const auto dir = std::filesystem::path(path).parent_path();
+              if (!path.empty() && !dir.empty()) std::filesystem::create_directories(dir);
+            }
             modules::RenderResult r =
-                opt->engine == "loop" ? modules::render_loop(scene) : modules::render_systemc(scene);
+                opt->engine == "loop" ? modules::render_loop(scene) : modules::render_systemc(scene, inspect);
             nlohmann::json stats = r.stats_json();
             stats["scene"] = scene.file;
             stats["config"] = scene.pipeline.resolved();
@@ -106,6 +148,10 @@ Command add_render_command(CLI::App& app) {
               std::cout << "  coverage mismatches: " << e["coverage_mismatches"] << " (golden model: "
                         << reference_s << " s)\n";
             }
+            if (!inspect.vcd.empty())
+              std::cout << "  traced " << r.trace_records << " pixel outputs into " << inspect.vcd << " (view: gtkwave "
+                        << inspect.vcd << " " << inspect.vcd.substr(0, inspect.vcd.size() - 4) << ".gtkw)\n";
+            if (!inspect.timeline.empty()) std::cout << "  timeline: " << inspect.timeline << "\n";
             std::cout << "  wrote " << opt->output << (opt->preview.empty() ? "" : " and " + opt->preview)
                       << (opt->stats.empty() ? "" : " and " + opt->stats) << "\n";
             return 0;

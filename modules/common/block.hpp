@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <systemc>
 #include <tlm>
@@ -20,6 +21,8 @@
 
 #include "modules/common/ops.hpp"
 #include "modules/common/packet.hpp"
+#include "modules/common/timeline.hpp"
+#include "modules/common/trace.hpp"
 
 namespace modules {
 
@@ -44,15 +47,35 @@ class Schedule {
     const uint64_t busy = timing_.ii * work;
     free_ = start + busy;
     busy_ += busy;
+    last_start_ = start;
+    last_busy_ = busy;
+    if (bin_cycles_ > 0) histogram(start, busy);
     return start + timing_.latency;
   }
   uint64_t free_cycle() const { return free_; }
   uint64_t busy_cycles() const { return busy_; }
+  uint64_t last_start() const { return last_start_; }
+  uint64_t last_busy() const { return last_busy_; }
   const Timing& timing() const { return timing_; }
 
+  // Busy cycles per bin of `bin_cycles` (0: not kept).
+  void keep_histogram(uint64_t bin_cycles) { bin_cycles_ = bin_cycles; }
+  const std::vector<uint64_t>& busy_per_bin() const { return bins_; }
+
  private:
+  void histogram(uint64_t start, uint64_t busy) {
+    for (uint64_t t = start, end = start + busy; t < end;) {
+      const uint64_t bin = t / bin_cycles_, bin_end = (bin + 1) * bin_cycles_;
+      if (bins_.size() <= bin) bins_.resize(bin + 1, 0);
+      const uint64_t until = std::min(end, bin_end);
+      bins_[bin] += until - t;
+      t = until;
+    }
+  }
+
   Timing timing_;
-  uint64_t free_ = 0, busy_ = 0;
+  uint64_t free_ = 0, busy_ = 0, last_start_ = 0, last_busy_ = 0, bin_cycles_ = 0;
+  std::vector<uint64_t> bins_;
 };
 
 // What every block reports, whatever its kind.
@@ -62,6 +85,18 @@ class BlockInfo {
   virtual std::string block_name() const = 0;
   virtual BlockStats stats() const = 0;
   virtual const Schedule& schedule() const = 0;
+  virtual Schedule& schedule() = 0;
+
+  // Inspection (docs/inspecting.md): waveforms of a region, the transaction timeline.
+  void attach(Tracer* tracer, int probe, Timeline* timeline, uint32_t track) {
+    tracer_ = tracer, probe_ = probe, timeline_ = timeline, track_ = track;
+  }
+
+ protected:
+  Tracer* tracer_ = nullptr;
+  int probe_ = -1;
+  Timeline* timeline_ = nullptr;
+  uint32_t track_ = 0;
 };
 
 // Forwards a transaction through `socket` with the delay annotation of `cycle`.
@@ -93,6 +128,7 @@ class Stage : public sc_core::sc_module, public BlockInfo {
     return s;
   }
   const Schedule& schedule() const override { return schedule_; }
+  Schedule& schedule() override { return schedule_; }
 
  private:
   void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time&) {
@@ -100,13 +136,29 @@ class Stage : public sc_core::sc_module, public BlockInfo {
     if (kernel_.bypass(p)) {
       ++stats_.bypassed;  // through the bypass wire: no work, no cycles
     } else {
+      // One test per packet when tracing is off or the packet is outside the region.
+      const bool traced = tracer_ && tracer_->region().covers(p.y, p.x0, p.x0 + p.count, p.tri->id);
+      kernel_.set_capture(traced);
       kernel_.process(p);
       ++stats_.packets;
       stats_.pixels += uint64_t(p.count);
       p.cycle = schedule_.occupy(p.cycle, kernel_.work(p));
+      if (traced) record(p);
+      if (timeline_ && (!tracer_ || traced))
+        timeline_->add(track_, schedule_.last_start(), schedule_.last_busy(), uint32_t(p.count), p.tri->id);
     }
     forward(out, trans, p.cycle, period_);
     trans.set_response_status(tlm::TLM_OK_RESPONSE);
+  }
+
+  // Pixel i leaves at the packet's first result plus II per unit of work before it.
+  void record(const SpanPacket& p) {
+    double values[16];
+    for (int i = 0; i < p.count; ++i) {
+      if (!tracer_->region().contains(p.x0 + i, p.y)) continue;
+      kernel_.trace(p, i, values);
+      tracer_->record(probe_, p.cycle + schedule_.timing().ii * uint64_t(i), p.x0 + i, p.y, p.tri->id, values);
+    }
   }
 
   Kernel& kernel_;

@@ -65,6 +65,8 @@ void LightingKernel::process(SpanPacket& p) {
       n_dot_l[i] = dot3(n, l);
       n_dot_h[i] = dot3(n, h);
     }
+    if (capture_ && k == 0)
+      for (int i = 0; i < count; ++i) captured_[0][i] = n_dot_l[i], captured_[1][i] = n_dot_h[i];
     // No highlight from a light behind the surface (and none where H is undefined).
     // Hardware looks the power up for every pixel (counted so); the model skips the
     // call whose result the select would discard.

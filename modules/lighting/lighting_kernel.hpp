@@ -7,6 +7,7 @@
 //
 // L and H come from vector_interp where they vary over the frame, else they are the
 // frame's constants. The power is one table look-up in hardware (powf here).
+#include <string>
 #include <vector>
 
 #include "modules/common/packet.hpp"
@@ -25,6 +26,14 @@ class LightingKernel {
   Ops ops_per_pixel(bool textured) const;
   Ops ops_per_span() const;
 
+  // Waveforms: N·L and N·H of the first light, the intensity (colour) out.
+  void set_capture(bool on) { capture_ = on; }
+  static std::vector<std::string> trace_names() { return {"n_dot_l", "n_dot_h", "r", "g", "b"}; }
+  void trace(const SpanPacket& p, int i, double* out) const {
+    out[0] = captured_[0][i], out[1] = captured_[1][i];
+    for (int c = 0; c < 3; ++c) out[2 + c] = p.rgb[c][i];
+  }
+
  private:
   struct Light {
     float radiance[3];
@@ -34,6 +43,8 @@ class LightingKernel {
   std::vector<Light> lights_;
   float ambient_[3];
   Ops ops_;
+  bool capture_ = false;
+  float captured_[2][kSpanMax] = {};
 };
 
 }  // namespace modules

@@ -13,6 +13,9 @@
 // pixels too, as a walker that only adds must. Affine mode walks N; perspective mode
 // walks N/w, whose direction is that of the perspective-correct normal (1/w > 0), so
 // the normalization that follows needs no per-pixel reciprocal.
+#include <string>
+#include <vector>
+
 #include "modules/common/packet.hpp"
 
 namespace modules {
@@ -25,6 +28,12 @@ class NormalInterpKernel {
   // Work of the last packet: one step per pixel, hidden pixels and row changes included.
   uint64_t work(const SpanPacket&) const { return last_steps_; }
   bool bypass(const SpanPacket&) const { return false; }
+  // Waveforms: the interpolated (not yet normalized) normal, N or N/w.
+  void set_capture(bool) {}
+  static std::vector<std::string> trace_names() { return {"n_x", "n_y", "n_z"}; }
+  void trace(const SpanPacket& p, int i, double* out) const {
+    for (int c = 0; c < 3; ++c) out[c] = p.n[c][i];
+  }
 
  private:
   void step(float n[3], const float d[3]) {

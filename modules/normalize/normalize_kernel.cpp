@@ -33,6 +33,11 @@ Ops normalize_ops_per_span(NormalizeMode mode) {
 void NormalizeKernel::process(SpanPacket& p) {
   const TriangleSetup& t = *p.tri;
   const float dh[3] = {t.n[0].ax, t.n[1].ax, t.n[2].ax};
+  if (capture_)
+    for (int i = 0; i < p.count; ++i) {
+      const float n[3] = {p.n[0][i], p.n[1][i], p.n[2][i]};
+      radicand_[i] = radicand(n);
+    }
   normalize_span(p.n[0], p.n[1], p.n[2], p.count, dh, t.c, mode_);
   ops_ += normalize_ops_per_pixel(mode_) * uint64_t(p.count);
   if (p.count > 0) ops_ += normalize_ops_per_span(mode_);

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "modules/common/packet.hpp"
 
@@ -138,10 +139,20 @@ class NormalizeKernel {
   NormalizeMode mode() const { return mode_; }
   uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }
   bool bypass(const SpanPacket&) const { return false; }
+  // Waveforms: the radicand |N|² of the incoming normal (kept only for traced
+  // packets) and the normalized normal.
+  void set_capture(bool on) { capture_ = on; }
+  static std::vector<std::string> trace_names() { return {"radicand", "n_x", "n_y", "n_z"}; }
+  void trace(const SpanPacket& p, int i, double* out) const {
+    out[0] = radicand_[i];
+    for (int c = 0; c < 3; ++c) out[1 + c] = p.n[c][i];
+  }
 
  private:
   NormalizeMode mode_;
   Ops ops_;
+  bool capture_ = false;
+  float radicand_[kSpanMax] = {};
 };
 
 }  // namespace modules

@@ -1,6 +1,10 @@
 #include "modules/pipeline/pipeline.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 
 #include "core/input_error.hpp"
@@ -57,7 +61,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 // The SystemC top level: the blocks the scene needs, bound in a chain.
 class Top : public sc_core::sc_module {
  public:
-  Top(sc_core::sc_module_name name, Kernels& k, const Options& o)
+  Top(sc_core::sc_module_name name, Kernels& k, const Options& o, const Inspect& inspect, int width, int height)
       : sc_core::sc_module(name), period_(1.0 / o.clock_mhz, sc_core::SC_US) {
     setup_ = std::make_unique<Setup>("setup", k.setup, o.timing.at("setup"), period_);
     raster_ = std::make_unique<Raster>("raster", k.raster, o.timing.at("raster"), period_);
@@ -80,10 +84,42 @@ class Top : public sc_core::sc_module {
     framebuffer_ = stage("framebuffer", k.framebuffer, o);
     bind_last(framebuffer_->in);
     blocks_.push_back(framebuffer_.get());
+
+    if (!inspect.vcd.empty()) {
+      TraceRegion region = inspect.region;
+      if (!inspect.region_given) region.x0 = 0, region.y0 = 0, region.x1 = width - 1, region.y1 = height - 1;
+      tracer_ = std::make_unique<Tracer>("tracer", inspect.vcd, region, period_);
+    }
+    auto probe = [&](const std::string& name, const std::vector<std::string>& values) {
+      return tracer_ ? tracer_->add_probe(name, values) : -1;
+    };
+    setup_->attach(tracer_.get(), -1, timeline(inspect), 0);
+    raster_->attach(tracer_.get(), probe("raster", Raster::trace_names()), timeline(inspect), 1);
+    attach(normal_interp_.get(), probe, inspect);
+    attach(normalize_.get(), probe, inspect);
+    attach(vector_interp_.get(), probe, inspect);
+    attach(texture_fetch_.get(), probe, inspect);
+    attach(lighting_.get(), probe, inspect);
+    attach(framebuffer_.get(), probe, inspect);
+    for (BlockInfo* b : blocks_) b->schedule().keep_histogram(inspect.bin_cycles);
   }
   const std::vector<BlockInfo*>& blocks() const { return blocks_; }
+  const Tracer* tracer() const { return tracer_.get(); }
+  const Timeline& timeline_slices() const { return timeline_; }
+  std::vector<std::string> names() const {
+    std::vector<std::string> n;
+    for (BlockInfo* b : blocks_) n.push_back(b->block_name());
+    return n;
+  }
 
  private:
+  Timeline* timeline(const Inspect& inspect) { return inspect.timeline.empty() ? nullptr : &timeline_; }
+  template <class K, class Probe>
+  void attach(Stage<K>* s, Probe& probe, const Inspect& inspect) {
+    if (!s) return;
+    const auto track = uint32_t(std::find(blocks_.begin(), blocks_.end(), s) - blocks_.begin());
+    s->attach(tracer_.get(), probe(s->block_name(), K::trace_names()), timeline(inspect), track);
+  }
   template <class K>
   std::unique_ptr<Stage<K>> stage(const char* name, K& kernel, const Options& o) {
     return std::make_unique<Stage<K>>(name, kernel, o.timing.at(name), period_);
@@ -99,6 +135,8 @@ class Top : public sc_core::sc_module {
   std::unique_ptr<Stage<LightingKernel>> lighting_;
   std::unique_ptr<Stage<FramebufferKernel>> framebuffer_;
   std::vector<BlockInfo*> blocks_;
+  std::unique_ptr<Tracer> tracer_;
+  Timeline timeline_;
 };
 
 }  // namespace
@@ -142,10 +180,10 @@ RenderResult render_loop(const core::Scene& scene) {
   return r;
 }
 
-RenderResult render_systemc(const core::Scene& scene) {
+RenderResult render_systemc(const core::Scene& scene, const Inspect& inspect) {
   const Options o = read_options(scene);
   Kernels k(scene, o);
-  Top top("shadetlm", k, o);
+  Top top("shadetlm", k, o, inspect, scene.camera.width, scene.camera.height);
   // One quantum of 10 000 cycles: the source yields rarely, and never per pixel.
   tlm_utils::tlm_quantumkeeper::set_global_quantum(sc_core::sc_time(1e4 / o.clock_mhz, sc_core::SC_US));
   RenderResult r;
@@ -161,12 +199,51 @@ RenderResult render_systemc(const core::Scene& scene) {
     br.stats = b->stats();
     br.timing = b->schedule().timing();
     br.free_cycle = b->schedule().free_cycle();
+    br.busy_per_bin = b->schedule().busy_per_bin();
     r.frame_cycles = std::max(r.frame_cycles, br.free_cycle + br.timing.latency);
     r.blocks.push_back(br);
   }
+  r.bin_cycles = inspect.bin_cycles;
+  if (top.tracer()) {
+    r.trace_records = top.tracer()->records();
+    const double ps = 1e6 / o.clock_mhz;
+    write_gtkw(inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw", inspect.vcd, top.tracer()->probes(),
+               double(top.tracer()->first_cycle()) * ps, double(top.tracer()->last_cycle()) * ps);
+  }
+  if (!inspect.timeline.empty()) top.timeline_slices().write(inspect.timeline, top.names(), o.clock_mhz);
   r.pixels_shaded = r.blocks.back().stats.pixels;
   r.frame = std::move(k.framebuffer.frame());
   return r;
+}
+
+void write_gtkw(const std::string& path, const std::string& vcd, const std::vector<Tracer::ProbeInfo>& probes,
+                double from_ps, double to_ps) {
+  // GTKWave's save format: "@<flags in hex>" sets how the following signals are
+  // drawn, "-text" is a comment line. 28 = binary, right-justified (a 1-bit valid);
+  // 24 = decimal; 8420 = analog step, signed, right-justified (real values).
+  core::write_atomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    out << "[*] shadetlm: the blocks in pipeline order\n"
+        << "[dumpfile] \"" << std::filesystem::absolute(vcd).string() << "\"\n"
+        << "[savefile] \"" << std::filesystem::absolute(path).string() << "\"\n"
+        << "[timestart] " << uint64_t(from_ps) << "\n[size] 1400 900\n[sst_width] 200\n[signals_width] 240\n"
+        << "[sst_expanded] 1\n";
+    // Zoom: GTKWave 3.3 shows about 4.3·2^-zoom time units (ps here) across its default
+    // wave pane (measured through its Tcl interface); show the traced span and 5 % more
+    // (the dump runs 10 % past it: a window past the dump's end resets the start).
+    const double zoom = -std::log2(std::max(1.0, (to_ps - from_ps) * 1.05 / 4.3));
+    out << "*" << std::fixed << zoom << " -1\n";
+    for (const auto& p : probes) {
+      out << "@800200\n-" << p.block << "\n";  // a group per block
+      for (size_t k = 0; k < p.names.size(); ++k) {
+        if (k == 0) out << "@28\n" << p.names[k] << "\n";
+        else if (!p.is_real[k]) out << "@24\n" << p.names[k] << "[31:0]\n";
+        else out << "@8420\n" << p.names[k] << "\n@20000\n-\n";  // analog, one blank row of height
+      }
+      out << "@1000200\n-" << p.block << "\n";  // group end
+    }
+    if (!out) throw std::runtime_error(path + ": cannot write the GTKWave save file");
+  });
 }
 
 const BlockReport* RenderResult::bottleneck() const {
@@ -200,6 +277,27 @@ nlohmann::json RenderResult::stats_json() const {
                          {"ops", b.stats.ops.to_json()}};
     bj["utilization"] = frame_cycles > 0 ? double(b.stats.busy_cycles) / double(frame_cycles) : 0.0;
     j["blocks"][b.name] = bj;
+  }
+  if (bin_cycles > 0 && frame_cycles > 0) {
+    // Utilization over time: each block's busy share of every bin, and the busiest
+    // block per bin. No back-pressure in the timing model, so no stalls: a block is
+    // busy or waiting for input (a bubble).
+    nlohmann::json over_time = {{"bin_cycles", bin_cycles}, {"blocks", nlohmann::json::object()}};
+    const size_t bins = size_t((frame_cycles + bin_cycles - 1) / bin_cycles);
+    std::vector<std::pair<uint64_t, std::string>> busiest(bins, {0, ""});
+    for (const auto& b : blocks) {
+      std::vector<double> share(bins, 0.0);
+      for (size_t i = 0; i < bins && i < b.busy_per_bin.size(); ++i) {
+        share[i] = double(b.busy_per_bin[i]) / double(bin_cycles);
+        if (b.busy_per_bin[i] > busiest[i].first) busiest[i] = {b.busy_per_bin[i], b.name};
+      }
+      over_time["blocks"][b.name] = share;
+      j["blocks"][b.name]["idle_cycles"] = frame_cycles - b.stats.busy_cycles;
+    }
+    nlohmann::json names = nlohmann::json::array();
+    for (const auto& [busy, name] : busiest) names.push_back(name);
+    over_time["bottleneck"] = names;
+    j["utilization_over_time"] = over_time;
   }
   const nlohmann::json total = total_ops().to_json();
   j["ops"] = total;

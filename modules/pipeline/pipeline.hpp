@@ -17,6 +17,8 @@
 #include "core/frame.hpp"
 #include "core/scene.hpp"
 #include "modules/common/block.hpp"
+#include "modules/common/timeline.hpp"
+#include "modules/common/trace.hpp"
 #include "modules/framebuffer/framebuffer_kernel.hpp"
 #include "modules/lighting/lighting_kernel.hpp"
 #include "modules/normal_interp/normal_interp_kernel.hpp"
@@ -59,6 +61,16 @@ struct BlockReport {
   BlockStats stats;
   Timing timing;
   uint64_t free_cycle = 0;  // when it finished its last work
+  std::vector<uint64_t> busy_per_bin;  // busy cycles per Inspect::bin_cycles
+};
+
+// What to record for inspection (docs/inspecting.md).
+struct Inspect {
+  std::string vcd;            // waveforms of `region` (and a .gtkw view beside them)
+  TraceRegion region;         // pixels and triangles traced; also limits the timeline
+  bool region_given = false;  // else the whole frame is traced
+  std::string timeline;       // Chrome trace-event JSON
+  uint64_t bin_cycles = 10000;  // utilization histogram bin
 };
 
 struct RenderResult {
@@ -70,6 +82,8 @@ struct RenderResult {
   uint64_t triangles_in = 0, triangles_drawn = 0;
   uint64_t pixels_walked = 0, pixels_hidden = 0, pixels_shaded = 0;
   std::vector<BlockReport> blocks;  // elaborated blocks, in pipeline order
+  uint64_t bin_cycles = 0;          // of the blocks' busy_per_bin (0: none)
+  uint64_t trace_records = 0;       // pixels written to the VCD, all blocks
 
   const BlockReport* bottleneck() const;  // the block with the most busy cycles
   Ops total_ops() const;
@@ -79,6 +93,12 @@ struct RenderResult {
 RenderResult render_loop(const core::Scene& scene);
 // Elaborates and simulates the SystemC pipeline: SystemC elaborates once per process,
 // so call this at most once per process.
-RenderResult render_systemc(const core::Scene& scene);
+RenderResult render_systemc(const core::Scene& scene, const Inspect& inspect = {});
+
+// Writes a GTKWave save file for `vcd`: the blocks' signals grouped in pipeline
+// order, real values drawn as analog steps.
+// The view opens on [from_ps, to_ps].
+void write_gtkw(const std::string& path, const std::string& vcd, const std::vector<Tracer::ProbeInfo>& probes,
+                double from_ps, double to_ps);
 
 }  // namespace modules

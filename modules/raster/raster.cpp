@@ -26,12 +26,23 @@ void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& dela
     p.cycle = start + schedule_.timing().ii * walked + schedule_.timing().latency;
     ++stats_.packets;
     stats_.pixels += uint64_t(p.count);
+    if (tracer_ && tracer_->region().covers(p.y, p.x0, p.x0 + p.count, t.id))
+      for (int i = 0; i < p.count; ++i)
+        if (tracer_->region().contains(p.x0 + i, p.y)) {
+          const double values[2] = {p.inv_w[i], p.w[i]};
+          // Pixel i leaves II per pixel walked after the packet's first.
+          tracer_->record(probe_, p.cycle - schedule_.timing().ii * uint64_t(p.count - 1 - i), p.x0 + i, p.y,
+                          t.id, values);
+        }
     span_.set_data_ptr(reinterpret_cast<unsigned char*>(&p));
     span_.set_data_length(sizeof(SpanPacket));
     span_.set_address(uint64_t(p.y) << 32 | uint32_t(p.x0));
     forward(out, span_, p.cycle, period_);
   });
   schedule_.occupy(arrival, kernel_.pixels_walked() - walked_before);
+  if (timeline_ && (!tracer_ || (t.id >= tracer_->region().triangle_first && t.id <= tracer_->region().triangle_last)))
+    timeline_->add(track_, schedule_.last_start(), schedule_.last_busy(),
+                   uint32_t(kernel_.pixels_walked() - walked_before), t.id);
   trans.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 

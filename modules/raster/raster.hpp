@@ -16,6 +16,9 @@ class Raster : public sc_core::sc_module, public BlockInfo {
   std::string block_name() const override { return basename(); }
   BlockStats stats() const override;
   const Schedule& schedule() const override { return schedule_; }
+  Schedule& schedule() override { return schedule_; }
+  // Waveforms: 1/w and w of each visible pixel.
+  static std::vector<std::string> trace_names() { return {"inv_w", "w"}; }
 
  private:
   void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay);

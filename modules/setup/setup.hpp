@@ -20,6 +20,7 @@ class Setup : public sc_core::sc_module, public BlockInfo {
   std::string block_name() const override { return basename(); }
   BlockStats stats() const override;
   const Schedule& schedule() const override { return schedule_; }
+  Schedule& schedule() override { return schedule_; }
   bool done() const { return done_; }
 
  private:

@@ -45,6 +45,7 @@ void TextureFetchKernel::process(SpanPacket& p) {
       x0 = std::clamp(x0, 0, tex.width - 1), x1 = std::clamp(x1, 0, tex.width - 1);
       y0 = std::clamp(y0, 0, tex.height - 1), y1 = std::clamp(y1, 0, tex.height - 1);
     }
+    if (capture_) captured_[0][i] = u, captured_[1][i] = v, captured_[2][i] = float(x0), captured_[3][i] = float(y0);
     const glm::vec4* row0 = &tex.texels[size_t(y0) * tex.width];
     const glm::vec4* row1 = &tex.texels[size_t(y1) * tex.width];
     const glm::vec4 t00 = row0[x0], t10 = row0[x1], t01 = row1[x0], t11 = row1[x1];

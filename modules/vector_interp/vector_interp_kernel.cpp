@@ -28,6 +28,14 @@ bool VectorInterpKernel::needed(const core::Scene& scene) {
   return false;
 }
 
+void VectorInterpKernel::trace(const SpanPacket& p, int i, double* out) const {
+  const LightSlot& s = lights_.front();  // the block exists only if some light is here
+  for (int c = 0; c < 3; ++c) {
+    out[c] = s.plane >= 0 ? p.l[s.light][c][i] : s.direction[c];
+    out[3 + c] = p.h[s.light][c][i];
+  }
+}
+
 Ops VectorInterpKernel::ops_per_pixel() const {
   Ops o;
   const Ops interpolate{/*add*/ 3, /*mul*/ 3};  // ×w, then one step of the plane

@@ -6,6 +6,7 @@
 // Directional lights have a constant L, a viewer at infinity a constant V: when every
 // light is directional and the viewer is at infinity, L and H are constant over the
 // frame and this block is not elaborated at all (needed() is false).
+#include <string>
 #include <vector>
 
 #include "modules/common/packet.hpp"
@@ -24,6 +25,11 @@ class VectorInterpKernel {
 
   Ops ops_per_pixel() const;
   Ops ops_per_span() const;
+
+  // Waveforms: L and H of the first light whose H varies.
+  void set_capture(bool) {}
+  static std::vector<std::string> trace_names() { return {"l_x", "l_y", "l_z", "h_x", "h_y", "h_z"}; }
+  void trace(const SpanPacket& p, int i, double* out) const;
 
  private:
   struct LightSlot {

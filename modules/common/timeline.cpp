@@ -1,0 +1,31 @@
+#include "modules/common/timeline.hpp"
+
+#include <fstream>
+#include <stdexcept>
+
+#include "core/frame.hpp"
+
+namespace modules {
+
+void Timeline::write(const std::string& path, const std::vector<std::string>& names, double clock_mhz) const {
+  core::write_atomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    out.precision(12);
+    out << "{\"displayTimeUnit\": \"ns\", \"traceEvents\": [\n";
+    // Track names, in pipeline order.
+    for (size_t b = 0; b < names.size(); ++b)
+      out << "{\"ph\": \"M\", \"pid\": 1, \"tid\": " << b << ", \"name\": \"thread_name\", \"args\": {\"name\": \""
+          << names[b] << "\"}},\n{\"ph\": \"M\", \"pid\": 1, \"tid\": " << b
+          << ", \"name\": \"thread_sort_index\", \"args\": {\"sort_index\": " << b << "}},\n";
+    out << "{\"ph\": \"M\", \"pid\": 1, \"name\": \"process_name\", \"args\": {\"name\": \"shadetlm pipeline\"}}";
+    for (const auto& s : slices_)
+      out << ",\n{\"ph\": \"X\", \"pid\": 1, \"tid\": " << s.block << ", \"name\": \"" << names[s.block]
+          << "\", \"ts\": " << double(s.start) / clock_mhz << ", \"dur\": " << double(s.busy) / clock_mhz
+          << ", \"args\": {\"pixels\": " << s.pixels << ", \"cycles\": " << s.busy << ", \"start_cycle\": "
+          << s.start << ", \"triangle\": " << s.triangle << "}}";
+    out << "\n]}\n";
+    if (!out) throw std::runtime_error(path + ": cannot write the timeline");
+  });
+}
+
+}  // namespace modules
