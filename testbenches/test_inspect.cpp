@@ -1,0 +1,109 @@
+// Inspection (docs/inspecting.md): the VCD is well formed and says what the frame
+// says, the GTKWave view names only signals of the VCD, the timeline has one slice
+// per packet. Each test case runs one simulation (one per process).
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "modules/pipeline/pipeline.hpp"
+#include "systemc_harness.hpp"
+#include "test_util.hpp"
+#include "vcd_reader.hpp"
+
+TEST_CASE("the VCD is well formed and its traced values are the frame's", "[inspect][systemc]") {
+  test::route_systemc_reports_to_failures();
+  const auto dir = test::temp_dir("vcd");
+  const core::Scene scene = core::load_scene(test::source_path("golden/point-light/scene.json"));
+  modules::Inspect inspect;
+  inspect.vcd = (dir / "trace.vcd").string();
+  inspect.region = {40, 30, 71, 45};  // on the sphere and the floor
+  inspect.region_given = true;
+  const modules::RenderResult r = modules::render_systemc(scene, inspect);
+  REQUIRE(r.trace_records > 0);
+
+  const test::Vcd vcd = test::read_vcd(inspect.vcd);
+  CHECK(vcd.header_ok);
+  CHECK(vcd.times_ok);
+  // Replay the framebuffer's signals: at each rise of valid, the pixel written.
+  const std::string fb = "SystemC.shadetlm.framebuffer.";
+  for (const char* s : {"valid", "x[31:0]", "y[31:0]", "r", "g", "b", "z"}) REQUIRE(vcd.id_of.count(fb + s));
+  std::map<std::string, double> value;
+  std::map<std::pair<int, int>, std::array<double, 4>> written;  // last write per pixel
+  uint64_t time = ~0ull;
+  auto flush = [&]() {
+    if (value[fb + "valid"] != 1) return;
+    written[{int(value[fb + "x[31:0]"]), int(value[fb + "y[31:0]"])}] = {value[fb + "r"], value[fb + "g"],
+                                                                         value[fb + "b"], value[fb + "z"]};
+  };
+  for (const auto& c : vcd.changes) {
+    if (c.time != time) flush(), time = c.time;
+    value[vcd.name_of.at(c.id)] = c.value;
+  }
+  flush();
+  int checked = 0;
+  for (const auto& [xy, v] : written) {
+    const size_t i = size_t(xy.second) * r.frame.width + xy.first;
+    INFO("pixel " << xy.first << ", " << xy.second);
+    CHECK(inspect.region.contains(xy.first, xy.second));
+    CHECK(v[0] == Approx(r.frame.at("R")[i]).epsilon(1e-6));
+    CHECK(v[1] == Approx(r.frame.at("G")[i]).epsilon(1e-6));
+    CHECK(v[2] == Approx(r.frame.at("B")[i]).epsilon(1e-6));
+    CHECK(v[3] == Approx(r.frame.at("Z")[i]).epsilon(1e-6));
+    ++checked;
+  }
+  // Every covered pixel of the region was written, and was seen written.
+  int covered = 0;
+  for (int y = inspect.region.y0; y <= inspect.region.y1; ++y)
+    for (int x = inspect.region.x0; x <= inspect.region.x1; ++x)
+      covered += r.frame.at("A")[size_t(y) * r.frame.width + x] > 0;
+  CHECK(checked == covered);
+  CHECK(checked > 100);
+
+  // The GTKWave view names only signals that exist, and names every block's valid.
+  std::ifstream gtkw((dir / "trace.gtkw").string());
+  REQUIRE(gtkw);
+  std::string line;
+  int named = 0;
+  std::set<std::string> blocks;
+  while (std::getline(gtkw, line)) {
+    if (line.empty() || line[0] == '@' || line[0] == '-' || line[0] == '[' || line[0] == '*') continue;
+    INFO(line);
+    CHECK(vcd.id_of.count(line) == 1);
+    if (line.size() > 6 && line.substr(line.size() - 6) == ".valid") blocks.insert(line);
+    ++named;
+  }
+  CHECK(named > 30);
+  CHECK(blocks.size() == r.blocks.size() - 1);  // every block but setup has a probe
+}
+
+TEST_CASE("the timeline is trace-event JSON with one slice per packet", "[inspect][systemc]") {
+  test::route_systemc_reports_to_failures();
+  const auto dir = test::temp_dir("timeline");
+  const core::Scene scene = core::load_scene(test::source_path("golden/demo/scene.json"));
+  modules::Inspect inspect;
+  inspect.timeline = (dir / "timeline.json").string();
+  const modules::RenderResult r = modules::render_systemc(scene, inspect);
+  std::ifstream in(inspect.timeline);
+  const nlohmann::json j = nlohmann::json::parse(in);  // throws if not valid JSON
+  std::map<int, std::string> track;
+  std::map<int, uint64_t> slices;
+  for (const auto& e : j.at("traceEvents")) {
+    if (e.at("ph") == "M" && e.at("name") == "thread_name") track[e.at("tid")] = e.at("args").at("name");
+    if (e.at("ph") == "X") {
+      ++slices[e.at("tid")];
+      CHECK(e.at("dur").get<double>() >= 0);
+      CHECK(e.at("args").contains("pixels"));
+      CHECK(e.at("args").contains("triangle"));
+    }
+  }
+  REQUIRE(track.size() == r.blocks.size());
+  for (size_t b = 0; b < r.blocks.size(); ++b) {
+    INFO(r.blocks[b].name);
+    CHECK(track[int(b)] == r.blocks[b].name);
+    // setup and raster: one slice per triangle; the span blocks: one per packet.
+    const uint64_t expected = b < 2 ? r.triangles_drawn : r.blocks[b].stats.packets;
+    CHECK(slices[int(b)] == expected);
+  }
+}
