@@ -85,6 +85,7 @@ Command add_render_command(CLI::App& app) {
             const core::Scene scene = opt->scene.load();
             modules::Inspect inspect;
             inspect.vcd = opt->vcd;
+            if (!opt->stats.empty()) inspect.bin_cycles = 10000;  // utilization over time, in the statistics
             inspect.timeline = opt->timeline;
             if (!opt->region.empty()) parse_region(opt->region, inspect.region), inspect.region_given = true;
             if (!opt->triangles.empty()) {
@@ -94,6 +95,8 @@ Command add_render_command(CLI::App& app) {
             }
             if (!inspect.vcd.empty() && (inspect.vcd.size() < 5 || inspect.vcd.substr(inspect.vcd.size() - 4) != ".vcd"))
               throw core::InputError("--vcd", inspect.vcd, "the waveform file must end in .vcd");
+            if (!modules::kTracing && (!inspect.vcd.empty() || !inspect.timeline.empty()))
+              throw core::InputError("--vcd", inspect.vcd, "this build has tracing compiled out (SHADETLM_TRACING=OFF)");
             if (opt->engine == "loop" && (!inspect.vcd.empty() || !inspect.timeline.empty()))
               throw core::InputError("--engine", "loop", "the plain loop has no time: waveforms and timelines need systemc");
             for (const std::string& path : {inspect.vcd, inspect.timeline}) {

@@ -68,12 +68,6 @@ glm::dvec3 to_screen(const glm::dvec4& c, int width, int height) {
   return {(c.x / c.w * 0.5 + 0.5) * width, (0.5 - c.y / c.w * 0.5) * height, c.z / c.w};
 }
 
-bool SnappedTriangle::top_left(int k) const {
-  const int n = (k + 1) % 3;
-  const int64_t dx = x[n] - x[k], dy = y[n] - y[k];
-  return dy < 0 || (dy == 0 && dx > 0);  // left edge, or horizontal top edge
-}
-
 int64_t SnappedTriangle::edge(int k, int px, int py) const {
   const int n = (k + 1) % 3;
   const int64_t cx = int64_t(px) * kSubpixelScale + kSubpixelScale / 2;

@@ -61,7 +61,11 @@ struct SnappedTriangle {
   std::pair<int, int> row_span(int py) const;
 
  private:
-  bool top_left(int k) const;
+  bool top_left(int k) const {
+    const int n = (k + 1) % 3;
+    const int64_t dx = x[n] - x[k], dy = y[n] - y[k];
+    return dy < 0 || (dy == 0 && dx > 0);  // left edge, or horizontal top edge
+  }
 };
 
 // Snaps a screen-space triangle (pixels) for a width × height viewport. Returns false

@@ -40,3 +40,26 @@ count "benchmark scene at 480x270 (3 lights, texture)" "$scene" "[480,270]"
 # The leanest Phong configuration: one directional light, viewer at infinity, no
 # texture (vector_interp and texture_fetch are not elaborated).
 count "golden/sphere at 960x720 (minimal Phong)" "$root/golden/sphere/scene.json" "[960,720]"
+
+echo
+echo "== the cost of tracing =="
+# A build with the tracing hooks compiled out, beside the normal one.
+notrace=$root/build-notrace
+cmake -S "$root" -B "$notrace" -DCMAKE_BUILD_TYPE=Release -DSHADETLM_TRACING=OFF >/dev/null
+cmake --build "$notrace" -j"$(nproc)" --target shadetlm >/dev/null
+instructions() {  # instructions BINARY ARGS...: callgrind's count inside the SystemC render
+  local b=$1
+  shift
+  valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.t" --toggle-collect='modules::render_systemc*' \
+    "$b" render "$scene" -o "$tmp/t.exr" "$@" >/dev/null 2>&1
+  sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$tmp/cg.t"
+}
+off=$(instructions "$bin" --set 'camera.resolution=[480,270]')
+none=$(instructions "$notrace/app/shadetlm" --set 'camera.resolution=[480,270]')
+awk -v a="$off" -v b="$none" 'BEGIN { printf "  compiled in but off / compiled out (instructions, 480x270): %d / %d = %.4f (goal <= 1.02)\n", a, b, a / b }'
+seconds() {  # best of three wall times of the SystemC render, from its own report
+  for i in 1 2 3; do "$bin" render "$scene" -o "$tmp/t.exr" "$@" | sed -n 's/.* pixels, \([0-9.e-]*\) s$/\1/p'; done | sort -g | head -1
+}
+plain=$(seconds)
+traced=$(seconds --vcd "$tmp/t.vcd" --trace-region 928,508,991,571)
+awk -v a="$traced" -v b="$plain" 'BEGIN { printf "  64x64 region of 1920x1080 traced / untraced (wall, best of 3): %.4f s / %.4f s = %.3f (goal <= 2)\n", a, b, a / b }'

@@ -63,15 +63,8 @@ class Schedule {
   const std::vector<uint64_t>& busy_per_bin() const { return bins_; }
 
  private:
-  void histogram(uint64_t start, uint64_t busy) {
-    for (uint64_t t = start, end = start + busy; t < end;) {
-      const uint64_t bin = t / bin_cycles_, bin_end = (bin + 1) * bin_cycles_;
-      if (bins_.size() <= bin) bins_.resize(bin + 1, 0);
-      const uint64_t until = std::min(end, bin_end);
-      bins_[bin] += until - t;
-      t = until;
-    }
-  }
+  // Out of line, so that occupy(), called for every packet, stays small and inlined.
+  void histogram(uint64_t start, uint64_t busy);
 
   Timing timing_;
   uint64_t free_ = 0, busy_ = 0, last_start_ = 0, last_busy_ = 0, bin_cycles_ = 0;
@@ -135,8 +128,12 @@ class Stage : public sc_core::sc_module, public BlockInfo {
     SpanPacket& p = *reinterpret_cast<SpanPacket*>(trans.get_data_ptr());
     if (kernel_.bypass(p)) {
       ++stats_.bypassed;  // through the bypass wire: no work, no cycles
+    } else if (!kTracing || (!tracer_ && !timeline_)) {  // nothing inspected: the fast path
+      kernel_.process(p);
+      ++stats_.packets;
+      stats_.pixels += uint64_t(p.count);
+      p.cycle = schedule_.occupy(p.cycle, kernel_.work(p));
     } else {
-      // One test per packet when tracing is off or the packet is outside the region.
       const bool traced = tracer_ && tracer_->region().covers(p.y, p.x0, p.x0 + p.count, p.tri->id);
       kernel_.set_capture(traced);
       kernel_.process(p);

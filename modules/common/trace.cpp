@@ -21,6 +21,7 @@ Tracer::~Tracer() {
 }
 
 int Tracer::add_probe(const std::string& block, const std::vector<std::string>& values) {
+  sc_assert(values.size() <= size_t(kMaxValues));
   auto probe = std::make_unique<Probe>();
   probe->values.assign(values.size(), 0.0);
   ProbeInfo info;
@@ -43,13 +44,15 @@ int Tracer::add_probe(const std::string& block, const std::vector<std::string>& 
 }
 
 void Tracer::record(int probe, uint64_t cycle, int x, int y, uint32_t triangle, const double* values) {
-  const std::vector<double> v(values, values + probes_[probe]->values.size());
-  queue_.push({cycle, 1, seq_++, probe, x, y, triangle, v});
+  Event e{cycle, 1, seq_++, probe, x, y, triangle, {}};
+  std::copy(values, values + probes_[probe]->values.size(), e.values.begin());
+  queue_.push(e);
   queue_.push({cycle + 1, 0, seq_++, probe, 0, 0, 0, {}});  // valid for one cycle
   first_ = records_ == 0 ? cycle : std::min(first_, cycle);
   last_ = std::max(last_, cycle + 1);
   ++records_;
-  wake_.notify(sc_core::SC_ZERO_TIME);
+  // Wake the replay only if this record comes before what it waits for.
+  if (cycle < next_wake_) wake_.notify(sc_core::SC_ZERO_TIME);
 }
 
 void Tracer::source_done() {
@@ -60,6 +63,7 @@ void Tracer::source_done() {
 void Tracer::run() {
   while (true) {
     if (queue_.empty()) {
+      next_wake_ = 0;  // any record wakes an idle replay
       if (source_done_) {
         // Extend the dump 10 % past the traced span, so that a viewer's window on the
         // whole span fits inside it (GTKWave ignores a start time otherwise).
@@ -77,7 +81,9 @@ void Tracer::run() {
     const sc_core::sc_time at = period_ * double(queue_.top().cycle);
     const sc_core::sc_time now = sc_core::sc_time_stamp();
     if (at > now) {
+      next_wake_ = queue_.top().cycle;
       sc_core::wait(at - now, wake_);  // a new, earlier record may arrive meanwhile
+      next_wake_ = UINT64_MAX;
       continue;
     }
     while (!queue_.empty() && period_ * double(queue_.top().cycle) <= now) {
@@ -90,7 +96,7 @@ void Tracer::run() {
         p.x = e.x;
         p.y = e.y;
         p.triangle = e.triangle;
-        p.values = e.values;
+        std::copy(e.values.begin(), e.values.begin() + p.values.size(), p.values.begin());
       }
       queue_.pop();
     }

@@ -4,6 +4,7 @@
 // Tracer replays the records in time order into variables written with sc_trace, so a
 // VCD shows each block's valid, x, y, triangle and values at the pixels' simulated
 // times. Outside the region a block pays one test per packet.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <queue>
@@ -13,6 +14,14 @@
 #include <systemc>
 
 namespace modules {
+
+// False in a build configured with -DSHADETLM_TRACING=OFF: the blocks' tracing hooks
+// compile away (used only to measure their cost).
+#ifdef SHADETLM_NO_TRACING
+constexpr bool kTracing = false;
+#else
+constexpr bool kTracing = true;
+#endif
 
 struct TraceRegion {
   int x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // inclusive pixel bounds; empty: nothing traced
@@ -57,13 +66,14 @@ class Tracer : public sc_core::sc_module {
     unsigned triangle = 0;
     std::vector<double> values;
   };
+  static constexpr int kMaxValues = 8;  // per probe
   struct Event {
     uint64_t cycle;
     int kind;  // 0 clears valid, 1 sets a pixel (clears first at the same cycle)
     uint64_t seq;
     int probe, x, y;
     uint32_t triangle;
-    std::vector<double> values;
+    std::array<double, kMaxValues> values;
     bool operator>(const Event& o) const {
       if (cycle != o.cycle) return cycle > o.cycle;
       if (kind != o.kind) return kind > o.kind;
@@ -80,6 +90,7 @@ class Tracer : public sc_core::sc_module {
   std::priority_queue<Event, std::vector<Event>, std::greater<Event>> queue_;
   sc_core::sc_event wake_;
   bool source_done_ = false;
+  uint64_t next_wake_ = UINT64_MAX;  // the cycle the replay thread waits for
   bool end_ = false;  // "shadetlm.end_of_trace": rises a little after the last record
   uint64_t seq_ = 0, records_ = 0, first_ = 0, last_ = 0;
 };

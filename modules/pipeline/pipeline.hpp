@@ -70,7 +70,7 @@ struct Inspect {
   TraceRegion region;         // pixels and triangles traced; also limits the timeline
   bool region_given = false;  // else the whole frame is traced
   std::string timeline;       // Chrome trace-event JSON
-  uint64_t bin_cycles = 10000;  // utilization histogram bin
+  uint64_t bin_cycles = 0;      // utilization histogram bin (0: not kept; it costs a little per packet)
 };
 
 struct RenderResult {

@@ -26,7 +26,7 @@ void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& dela
     p.cycle = start + schedule_.timing().ii * walked + schedule_.timing().latency;
     ++stats_.packets;
     stats_.pixels += uint64_t(p.count);
-    if (tracer_ && tracer_->region().covers(p.y, p.x0, p.x0 + p.count, t.id))
+    if (kTracing && tracer_ && tracer_->region().covers(p.y, p.x0, p.x0 + p.count, t.id))
       for (int i = 0; i < p.count; ++i)
         if (tracer_->region().contains(p.x0 + i, p.y)) {
           const double values[2] = {p.inv_w[i], p.w[i]};
@@ -40,7 +40,7 @@ void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& dela
     forward(out, span_, p.cycle, period_);
   });
   schedule_.occupy(arrival, kernel_.pixels_walked() - walked_before);
-  if (timeline_ && (!tracer_ || (t.id >= tracer_->region().triangle_first && t.id <= tracer_->region().triangle_last)))
+  if (kTracing && timeline_ && (!tracer_ || (t.id >= tracer_->region().triangle_first && t.id <= tracer_->region().triangle_last)))
     timeline_->add(track_, schedule_.last_start(), schedule_.last_busy(),
                    uint32_t(kernel_.pixels_walked() - walked_before), t.id);
   trans.set_response_status(tlm::TLM_OK_RESPONSE);

@@ -62,12 +62,9 @@ void RasterKernel::run(const TriangleSetup& t, Emit&& emit) {
     p.y = y;
     p.row_start = x_begin;
     p.count = 0;
-    int until_seed = 0;
     for (int x = x_begin; x < x_end; ++x, inv_w += t.inv_w.ax) {
-      if (until_seed-- == 0) {
-        inv_w = t.inv_w.at(x - t.x_ref, y - t.y_ref);
-        until_seed = kSpanMax - 1;
-      }
+      static_assert((kSpanMax & (kSpanMax - 1)) == 0, "re-seeding uses a mask");
+      if (((x - x_begin) & (kSpanMax - 1)) == 0) inv_w = t.inv_w.at(x - t.x_ref, y - t.y_ref);
       const float inv_w_pixel = inv_w > 0 ? inv_w : t.inv_w_min;
       if (inv_w_pixel > depth[x]) {
         depth[x] = inv_w_pixel;
