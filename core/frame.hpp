@@ -21,7 +21,8 @@ struct Frame {
   Frame() = default;
   Frame(int w, int h) : width(w), height(h) {}
 
-  // Adds a channel filled with `fill`, or returns the existing one.
+  // Adds a channel filled with `fill`, or returns the existing one. The reference is
+  // valid until the next add (which may move the channels; their buffers stay put).
   std::vector<float>& add(const std::string& name, float fill = 0.0f);
   const Channel* find(const std::string& name) const;
   std::vector<float>& at(const std::string& name);

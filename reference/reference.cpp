@@ -116,8 +116,9 @@ Image render(const core::Scene& scene) {
 core::Frame to_frame(const Image& img) {
   core::Frame f(img.width, img.height);
   const char* names[] = {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z"};
+  for (const char* n : names) f.add(n);  // all first: adding moves the channels
   std::vector<float>* ch[8];
-  for (int k = 0; k < 8; ++k) ch[k] = &f.add(names[k]);
+  for (int k = 0; k < 8; ++k) ch[k] = &f.at(names[k]);
   for (size_t i = 0; i < f.pixel_count(); ++i) {
     for (int k = 0; k < 3; ++k) (*ch[k])[i] = float(img.color[i][k]);
     (*ch[3])[i] = float(img.alpha[i]);

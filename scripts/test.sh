@@ -1,9 +1,27 @@
 #!/usr/bin/env bash
 # Set-up command 2: installs what is missing, builds, and runs every test through
 # ctest. Extra arguments go to ctest (e.g. -L golden, -R coverage).
+#
+#   scripts/test.sh --sanitize [ctest args]   the same suite in a separate build
+#       (build-sanitize/) under AddressSanitizer and UndefinedBehaviorSanitizer: any
+#       memory error, leak or undefined behaviour fails the test that hit it.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
+if [[ ${1:-} == --sanitize ]]; then
+  shift
+  build=$root/build-sanitize
+  flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+  # GCC 12 reports false maybe-uninitialized warnings in libstdc++ under sanitizers.
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS="$flags -Wno-maybe-uninitialized" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+    >/dev/null
+  cmake --build "$build" -j"$(nproc)"
+  cd "$build"
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --output-on-failure -j"$(nproc)" "$@"
+  exit
+fi
 "$root/scripts/build.sh"
 cd "${BUILD_DIR:-$root/build}"
 ctest --output-on-failure -j"$(nproc)" "$@"

@@ -1,15 +1,18 @@
 #!/usr/bin/env bash
 # Installs shadetlm into a staging prefix and builds and runs the out-of-tree example
 # of docs/reuse.md against it: find_package(shadetlm) and one block in a testbench of
-# one's own. Usage: reuse_test.sh BUILD_DIR SOURCE_DIR
+# one's own. Usage: reuse_test.sh BUILD_DIR SOURCE_DIR [CXX_FLAGS [LINKER_FLAGS]]
 set -euo pipefail
 build=$1
 src=$2
+cxx_flags=${3:-}
+link_flags=${4:-}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build" --prefix "$tmp/stage" >/dev/null
 test -f "$tmp/stage/lib/cmake/shadetlm/shadetlmConfig.cmake"
 test -f "$tmp/stage/include/shadetlm/modules/normalize/normalize_kernel.hpp"
-cmake -S "$src/examples/reuse" -B "$tmp/build" -DCMAKE_PREFIX_PATH="$tmp/stage" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S "$src/examples/reuse" -B "$tmp/build" -DCMAKE_PREFIX_PATH="$tmp/stage" -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_CXX_FLAGS="$cxx_flags" -DCMAKE_EXE_LINKER_FLAGS="$link_flags" >/dev/null
 cmake --build "$tmp/build" -j2 >/dev/null
 SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1 "$tmp/build/normalize_testbench"
