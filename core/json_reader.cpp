@@ -212,7 +212,12 @@ json parse_json_text(const std::string& text, const std::string& file) {
   std::vector<std::set<std::string>> keys;
   std::vector<std::string> path;
   std::string duplicate;
-  auto check = [&](int, json::parse_event_t event, json& parsed) {
+  // Copying or destroying a JSON value recurses once per level: a document nested
+  // thousands deep would overflow the stack. Scenes need a handful of levels.
+  constexpr int kMaxDepth = 64;
+  auto check = [&](int depth, json::parse_event_t event, json& parsed) {
+    if (depth > kMaxDepth)
+      throw InputError(file, "", "nested deeper than " + std::to_string(kMaxDepth) + " levels");
     if (event == json::parse_event_t::object_start) {
       keys.emplace_back();
     } else if (event == json::parse_event_t::object_end) {

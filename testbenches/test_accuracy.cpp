@@ -5,6 +5,8 @@
 // of the golden model, identical coverage. (Textured, the same wall shows the texture
 // unit's float addressing at texel coordinates up to 2048: reported in
 // docs/pipeline.md, not gated.)
+#include <cstring>
+
 #include "core/compare.hpp"
 #include "modules/pipeline/pipeline.hpp"
 #include "reference/reference.hpp"
@@ -24,4 +26,17 @@ TEST_CASE("long rows: a wall receding across 1920 pixels stays within 2^-12", "[
   INFO(c.verdict());
   CHECK(c.pass);
   CHECK(r.frame.at("A") == ref.at("A"));
+}
+
+TEST_CASE("the same scene renders to the same bits, run after run", "[determinism]") {
+  // Two runs in one process (kernel loop; the golden tests show the SystemC run equal
+  // to it, and the golden frames tie runs of different processes and machines).
+  const core::Scene scene = core::load_scene(test::source_path("golden/demo/scene.json"));
+  const modules::RenderResult a = modules::render_loop(scene), b = modules::render_loop(scene);
+  REQUIRE(a.frame.channels.size() == b.frame.channels.size());
+  for (const auto& c : a.frame.channels) {
+    INFO(c.name);
+    CHECK(std::memcmp(c.values.data(), b.frame.at(c.name).data(), c.values.size() * sizeof(float)) == 0);
+  }
+  CHECK(a.total_ops() == b.total_ops());
 }
