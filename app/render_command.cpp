@@ -59,6 +59,19 @@ void parse_triangles(const std::string& text, modules::TraceRegion& r) {
   r.triangle_first = uint32_t(a), r.triangle_last = uint32_t(b);
 }
 
+// An output the run will write: its folder is made, and it must be writable (checked
+// before anything is simulated, so that bad paths stop with exit 2 and no output).
+void check_writable(const std::string& path, const std::string& option) {
+  if (path.empty()) return;
+  const auto dir = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+  if (std::filesystem::is_directory(path, ec)) throw core::InputError(option, path, "is a folder");
+  const std::string probe = core::temporary_path_for(path);
+  { std::ofstream test(probe); if (!test) throw core::InputError(option, path, "cannot be written"); }
+  core::remove_quietly(probe);
+}
+
 Command add_render_command(CLI::App& app) {
   struct Options {
     SceneOptions scene;
@@ -99,10 +112,18 @@ Command add_render_command(CLI::App& app) {
               throw core::InputError("--vcd", inspect.vcd, "this build has tracing compiled out (SHADETLM_TRACING=OFF)");
             if (opt->engine == "loop" && (!inspect.vcd.empty() || !inspect.timeline.empty()))
               throw core::InputError("--engine", "loop", "the plain loop has no time: waveforms and timelines need systemc");
-            for (const std::string& path : {inspect.vcd, inspect.timeline}) {
-              const auto dir = std::filesystem::path(path).parent_path();
-              if (!path.empty() && !dir.empty()) std::filesystem::create_directories(dir);
-            }
+            const std::string gtkw = inspect.vcd.empty() ? "" : inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw";
+            check_writable(opt->output, "--output");
+            check_writable(opt->preview, "--preview");
+            check_writable(opt->stats, "--stats");
+            check_writable(inspect.vcd, "--vcd");
+            check_writable(gtkw, "--vcd");
+            check_writable(inspect.timeline, "--timeline");
+            // Should a later write fail, the inspection files of this run go too.
+            auto take_back_inspection = [&]() {
+              for (const std::string& path : {inspect.vcd, gtkw, inspect.timeline})
+                if (!path.empty()) core::remove_quietly(path);
+            };
             modules::RenderResult r =
                 opt->engine == "loop" ? modules::render_loop(scene) : modules::render_systemc(scene, inspect);
             nlohmann::json stats = r.stats_json();
@@ -123,6 +144,7 @@ Command add_render_command(CLI::App& app) {
               write_frame(r.frame, opt->output, opt->preview);
             } catch (...) {
               if (!stats_tmp.empty()) core::remove_quietly(stats_tmp);
+              take_back_inspection();
               throw;
             }
             if (!stats_tmp.empty()) {
@@ -131,6 +153,7 @@ Command add_render_command(CLI::App& app) {
               } catch (...) {  // take the frame back: no output of a run that failed
                 core::remove_quietly(opt->output);
                 if (!opt->preview.empty()) core::remove_quietly(opt->preview);
+                take_back_inspection();
                 throw;
               }
             }

@@ -85,7 +85,7 @@ check render-too-many-lights 2 "$bin" render -o "$tmp/bad5.exr" --set "lights=[$
 expect_output render-too-many-lights "at most 8 lights"
 expect_no_file render-too-many-lights "$tmp/bad5.exr"
 mkdir -p "$tmp/taken.json"  # a folder where the statistics should go: nothing is written
-check render-stats-fail 1 "$bin" render -o "$tmp/half.exr" --stats "$tmp/taken.json"
+check render-stats-fail 2 "$bin" render -o "$tmp/half.exr" --stats "$tmp/taken.json"
 expect_no_file render-stats-fail "$tmp/half.exr"
 check bench 0 "$bin" bench --set camera.resolution=[64,36]
 expect_output bench "ratio systemc / loop"

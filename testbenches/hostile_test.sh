@@ -97,6 +97,11 @@ hostile compare-missing "absent.exr" "$bin" compare absent.exr good.exr --diff o
 hostile bad-trace-region "--trace-region" "$bin" render -o out.exr --vcd t.vcd --trace-region 1,2,3
 hostile bad-trace-triangles "--trace-triangles" "$bin" render -o out.exr --vcd t.vcd --trace-triangles 9..2
 hostile vcd-without-extension "--vcd" "$bin" render -o out.exr --vcd trace.txt
+mkdir -p taken.vcd folder.exr
+hostile vcd-is-a-folder "--vcd" "$bin" render -o out.exr --vcd taken.vcd --timeline t.json
+hostile vcd-unwritable "--vcd" "$bin" render -o out.exr --vcd /proc/trace.vcd
+hostile output-is-a-folder "--output" "$bin" render -o folder.exr --vcd t.vcd --timeline t.json
+[[ ! -e t.vcd && ! -e t.gtkw && ! -e t.json ]] && ((passes++)) || { echo "FAIL: inspection files left behind"; ((failures++)); }
 
 echo "$passes passed, $failures failed"
 [[ $failures -eq 0 && $passes -ge 30 ]]

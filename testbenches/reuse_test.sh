@@ -10,7 +10,7 @@ link_flags=${4:-}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build" --prefix "$tmp/stage" >/dev/null
-test -f "$tmp/stage/lib/cmake/shadetlm/shadetlmConfig.cmake"
+find "$tmp/stage" -name shadetlmConfig.cmake | grep -q . # lib/, lib64/ or lib/<arch>/
 test -f "$tmp/stage/include/shadetlm/modules/normalize/normalize_kernel.hpp"
 cmake -S "$src/examples/reuse" -B "$tmp/build" -DCMAKE_PREFIX_PATH="$tmp/stage" -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_CXX_FLAGS="$cxx_flags" -DCMAKE_EXE_LINKER_FLAGS="$link_flags" >/dev/null

@@ -107,3 +107,57 @@ TEST_CASE("the timeline is trace-event JSON with one slice per packet", "[inspec
     CHECK(slices[int(b)] == expected);
   }
 }
+
+TEST_CASE("every traced record reaches the VCD, also when the replay idles", "[inspect][systemc]") {
+  // At 128×72 setup is the bottleneck and traced triangles come in bursts with idle
+  // stretches between them: the replay thread must wake for records after idling, and
+  // the last time step must reach the file.
+  test::route_systemc_reports_to_failures();
+  const auto dir = test::temp_dir("vcd-idle");
+  const core::Scene scene = core::load_scene(test::source_path("golden/demo/scene.json"));
+  modules::Inspect inspect;
+  inspect.vcd = (dir / "idle.vcd").string();
+  inspect.region = {0, 0, 127, 71, 1300, 1400};
+  inspect.region_given = true;
+  inspect.timeline = (dir / "idle.json").string();
+  const modules::RenderResult r = modules::render_systemc(scene, inspect);
+  REQUIRE(r.trace_records > 100);
+  const test::Vcd vcd = test::read_vcd(inspect.vcd);
+  REQUIRE(vcd.header_ok);
+  // A record is a cycle at which a block's valid is high with a new pixel: count the
+  // time steps where some block's x, y or triangle changes, or its valid rises, while
+  // its valid is (then) high.
+  std::map<std::string, double> value;
+  std::set<std::string> blocks;
+  for (const auto& [id, name] : vcd.name_of)
+    if (name.size() > 6 && name.substr(name.size() - 6) == ".valid") blocks.insert(name.substr(0, name.size() - 5));
+  uint64_t seen = 0, time = ~0ull;
+  std::set<std::string> touched;
+  auto flush = [&]() {
+    for (const auto& b : touched)
+      if (value[b + "valid"] == 1) ++seen;
+    touched.clear();
+  };
+  bool ended = false;
+  for (const auto& c : vcd.changes) {
+    if (c.time != time) flush(), time = c.time;
+    const std::string& name = vcd.name_of.at(c.id);
+    value[name] = c.value;
+    const auto dot = name.rfind('.');
+    const std::string block = name.substr(0, dot + 1), signal = name.substr(dot + 1);
+    if (blocks.count(block) && (signal == "valid" || signal == "x[31:0]" || signal == "y[31:0]" || signal == "triangle[31:0]"))
+      touched.insert(block);
+    if (name == "SystemC.shadetlm.end_of_trace" && c.value == 1) ended = true;
+  }
+  flush();
+  CHECK(seen == r.trace_records);
+  CHECK(ended);  // the marker past the last record is in the file
+  // The timeline keeps the same triangles only.
+  std::ifstream in(inspect.timeline);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  for (const auto& e : j.at("traceEvents"))
+    if (e.at("ph") == "X") {
+      CHECK(e.at("args").at("triangle").get<uint32_t>() >= 1300);
+      CHECK(e.at("args").at("triangle").get<uint32_t>() <= 1400);
+    }
+}

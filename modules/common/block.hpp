@@ -81,11 +81,18 @@ class BlockInfo {
   virtual Schedule& schedule() = 0;
 
   // Inspection (docs/inspecting.md): waveforms of a region, the transaction timeline.
-  void attach(Tracer* tracer, int probe, Timeline* timeline, uint32_t track) {
-    tracer_ = tracer, probe_ = probe, timeline_ = timeline, track_ = track;
+  // `filter`: the traced region and triangles (nullptr: everything), which limits the
+  // timeline as well as the waveforms.
+  void attach(Tracer* tracer, int probe, Timeline* timeline, uint32_t track, const TraceRegion* filter) {
+    tracer_ = tracer, probe_ = probe, timeline_ = timeline, track_ = track, filter_ = filter;
   }
 
  protected:
+  bool triangle_kept(uint32_t id) const {
+    return !filter_ || (id >= filter_->triangle_first && id <= filter_->triangle_last);
+  }
+
+  const TraceRegion* filter_ = nullptr;
   Tracer* tracer_ = nullptr;
   int probe_ = -1;
   Timeline* timeline_ = nullptr;
@@ -134,27 +141,31 @@ class Stage : public sc_core::sc_module, public BlockInfo {
       stats_.pixels += uint64_t(p.count);
       p.cycle = schedule_.occupy(p.cycle, kernel_.work(p));
     } else {
-      const bool traced = tracer_ && tracer_->region().covers(p.y, p.x0, p.x0 + p.count, p.tri->id);
+      const bool kept = !filter_ || filter_->covers(p.y, p.x0, p.x0 + p.count, p.tri->id);
+      const bool traced = tracer_ && kept;
       kernel_.set_capture(traced);
       kernel_.process(p);
       ++stats_.packets;
       stats_.pixels += uint64_t(p.count);
       p.cycle = schedule_.occupy(p.cycle, kernel_.work(p));
       if (traced) record(p);
-      if (timeline_ && (!tracer_ || traced))
+      if (timeline_ && kept)
         timeline_->add(track_, schedule_.last_start(), schedule_.last_busy(), uint32_t(p.count), p.tri->id);
     }
     forward(out, trans, p.cycle, period_);
     trans.set_response_status(tlm::TLM_OK_RESPONSE);
   }
 
-  // Pixel i leaves at the packet's first result plus II per unit of work before it.
+  // Pixel i leaves at the packet's first result plus its share of the packet's busy
+  // cycles before it (exact where every pixel is the same work, e.g. II per light in
+  // lighting; spread evenly where it is not, e.g. the walker's steps through gaps).
   void record(const SpanPacket& p) {
     double values[16];
+    const uint64_t busy = schedule_.last_busy();
     for (int i = 0; i < p.count; ++i) {
       if (!tracer_->region().contains(p.x0 + i, p.y)) continue;
       kernel_.trace(p, i, values);
-      tracer_->record(probe_, p.cycle + schedule_.timing().ii * uint64_t(i), p.x0 + i, p.y, p.tri->id, values);
+      tracer_->record(probe_, p.cycle + busy * uint64_t(i) / uint64_t(p.count), p.x0 + i, p.y, p.tri->id, values);
     }
   }
 

@@ -63,16 +63,15 @@ void Tracer::source_done() {
 void Tracer::run() {
   while (true) {
     if (queue_.empty()) {
-      next_wake_ = 0;  // any record wakes an idle replay
+      next_wake_ = UINT64_MAX;  // idle: any record wakes the replay
       if (source_done_) {
         // Extend the dump 10 % past the traced span, so that a viewer's window on the
         // whole span fits inside it (GTKWave ignores a start time otherwise).
-        if (records_ > 0) {
-          const sc_core::sc_time end = period_ * double(last_ + (last_ - first_) / 10 + 1);
-          if (end > sc_core::sc_time_stamp()) sc_core::wait(end - sc_core::sc_time_stamp());
-          end_ = true;
-          sc_core::wait(sc_core::SC_ZERO_TIME);
-        }
+        const sc_core::sc_time end = period_ * double(last_ + (last_ - first_) / 10 + 1);
+        if (end > sc_core::sc_time_stamp()) sc_core::wait(end - sc_core::sc_time_stamp());
+        end_ = true;
+        // The VCD writer writes a time step's values only when time moves on from it.
+        sc_core::wait(period_);
         return;
       }
       sc_core::wait(wake_);

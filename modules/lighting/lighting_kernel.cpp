@@ -54,6 +54,8 @@ void LightingKernel::process(SpanPacket& p) {
   for (int c = 0; c < 3; ++c)
     for (int i = 0; i < count; ++i) p.rgb[c][i] = textured ? ambient[c] * p.tex[c][i] : ambient[c];
   float n_dot_l[kSpanMax], n_dot_h[kSpanMax];
+  if (capture_ && lights_.empty())  // no light: nothing to show, not a stale value
+    for (int i = 0; i < count; ++i) captured_[0][i] = captured_[1][i] = 0;
   for (size_t k = 0; k < lights_.size(); ++k) {
     const Light& s = lights_[k];
     for (int i = 0; i < count; ++i) {

@@ -85,16 +85,15 @@ class Top : public sc_core::sc_module {
     bind_last(framebuffer_->in);
     blocks_.push_back(framebuffer_.get());
 
-    if (!inspect.vcd.empty()) {
-      TraceRegion region = inspect.region;
-      if (!inspect.region_given) region.x0 = 0, region.y0 = 0, region.x1 = width - 1, region.y1 = height - 1;
-      tracer_ = std::make_unique<Tracer>("tracer", inspect.vcd, region, period_);
-    }
+    region_ = inspect.region;
+    if (!inspect.region_given) region_.x0 = 0, region_.y0 = 0, region_.x1 = width - 1, region_.y1 = height - 1;
+    filter_ = inspect.region_given ? &region_ : nullptr;
+    if (!inspect.vcd.empty()) tracer_ = std::make_unique<Tracer>("tracer", inspect.vcd, region_, period_);
     auto probe = [&](const std::string& name, const std::vector<std::string>& values) {
       return tracer_ ? tracer_->add_probe(name, values) : -1;
     };
-    setup_->attach(tracer_.get(), -1, timeline(inspect), 0);
-    raster_->attach(tracer_.get(), probe("raster", Raster::trace_names()), timeline(inspect), 1);
+    setup_->attach(tracer_.get(), -1, timeline(inspect), 0, filter_);
+    raster_->attach(tracer_.get(), probe("raster", Raster::trace_names()), timeline(inspect), 1, filter_);
     attach(normal_interp_.get(), probe, inspect);
     attach(normalize_.get(), probe, inspect);
     attach(vector_interp_.get(), probe, inspect);
@@ -118,7 +117,7 @@ class Top : public sc_core::sc_module {
   void attach(Stage<K>* s, Probe& probe, const Inspect& inspect) {
     if (!s) return;
     const auto track = uint32_t(std::find(blocks_.begin(), blocks_.end(), s) - blocks_.begin());
-    s->attach(tracer_.get(), probe(s->block_name(), K::trace_names()), timeline(inspect), track);
+    s->attach(tracer_.get(), probe(s->block_name(), K::trace_names()), timeline(inspect), track, filter_);
   }
   template <class K>
   std::unique_ptr<Stage<K>> stage(const char* name, K& kernel, const Options& o) {
@@ -135,6 +134,8 @@ class Top : public sc_core::sc_module {
   std::unique_ptr<Stage<LightingKernel>> lighting_;
   std::unique_ptr<Stage<FramebufferKernel>> framebuffer_;
   std::vector<BlockInfo*> blocks_;
+  TraceRegion region_;
+  const TraceRegion* filter_ = nullptr;
   std::unique_ptr<Tracer> tracer_;
   Timeline timeline_;
 };
@@ -204,7 +205,7 @@ RenderResult render_systemc(const core::Scene& scene, const Inspect& inspect) {
     r.blocks.push_back(br);
   }
   r.bin_cycles = inspect.bin_cycles;
-  if (top.tracer()) {
+  if (top.tracer() && std::filesystem::exists(inspect.vcd)) {
     r.trace_records = top.tracer()->records();
     const double ps = 1e6 / o.clock_mhz;
     write_gtkw(inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw", inspect.vcd, top.tracer()->probes(),
@@ -288,14 +289,15 @@ nlohmann::json RenderResult::stats_json() const {
     for (const auto& b : blocks) {
       std::vector<double> share(bins, 0.0);
       for (size_t i = 0; i < bins && i < b.busy_per_bin.size(); ++i) {
-        share[i] = double(b.busy_per_bin[i]) / double(bin_cycles);
+        const uint64_t length = std::min<uint64_t>(bin_cycles, frame_cycles - i * bin_cycles);  // last one partial
+        share[i] = double(b.busy_per_bin[i]) / double(length);
         if (b.busy_per_bin[i] > busiest[i].first) busiest[i] = {b.busy_per_bin[i], b.name};
       }
       over_time["blocks"][b.name] = share;
       j["blocks"][b.name]["idle_cycles"] = frame_cycles - b.stats.busy_cycles;
     }
     nlohmann::json names = nlohmann::json::array();
-    for (const auto& [busy, name] : busiest) names.push_back(name);
+    for (const auto& [busy, name] : busiest) names.push_back(busy > 0 ? nlohmann::json(name) : nlohmann::json());
     over_time["bottleneck"] = names;
     j["utilization_over_time"] = over_time;
   }

@@ -40,7 +40,8 @@ void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& dela
     forward(out, span_, p.cycle, period_);
   });
   schedule_.occupy(arrival, kernel_.pixels_walked() - walked_before);
-  if (kTracing && timeline_ && (!tracer_ || (t.id >= tracer_->region().triangle_first && t.id <= tracer_->region().triangle_last)))
+  // Setup and raster work per triangle: their tracks keep the triangles of the filter.
+  if (kTracing && timeline_ && triangle_kept(t.id))
     timeline_->add(track_, schedule_.last_start(), schedule_.last_busy(),
                    uint32_t(kernel_.pixels_walked() - walked_before), t.id);
   trans.set_response_status(tlm::TLM_OK_RESPONSE);

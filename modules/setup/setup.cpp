@@ -22,7 +22,7 @@ void Setup::run() {
   kernel_.run([&](const TriangleSetup& t) {
     const uint64_t arrival = schedule_.occupy(local_cycle, 1);  // one triangle
     ++stats_.packets;
-    if (kTracing && timeline_ && (!tracer_ || (t.id >= tracer_->region().triangle_first && t.id <= tracer_->region().triangle_last)))
+    if (kTracing && timeline_ && triangle_kept(t.id))
       timeline_->add(track_, schedule_.last_start(), schedule_.last_busy(), 0, t.id);
     trans.set_data_ptr(reinterpret_cast<unsigned char*>(const_cast<TriangleSetup*>(&t)));
     trans.set_data_length(sizeof(TriangleSetup));
