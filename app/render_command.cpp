@@ -29,10 +29,10 @@ nlohmann::json error_against_reference(const core::Frame& frame, const core::Sce
   nlohmann::json j;
   for (const auto& m : r.layers) {
     const std::string key = m.layer == "RGB" ? "rgb" : m.layer == "Z" ? "z" : "n";
-    j[key] = {{"max", std::isfinite(m.max_abs) ? nlohmann::json(m.max_abs) : nlohmann::json("inf")},
+    j[key] = {{"max", core::json_figure(m.max_abs)},
               {"max_at", {m.max_x, m.max_y}},
-              {"rmse", std::isfinite(m.rmse) ? nlohmann::json(m.rmse) : nlohmann::json("inf")},
-              {"psnr", std::isfinite(m.psnr) ? nlohmann::json(m.psnr) : nlohmann::json("inf")}};
+              {"rmse", core::json_figure(m.rmse)},
+              {"psnr", core::json_figure(m.psnr)}};
   }
   size_t coverage = 0;
   const auto &a = frame.at("A"), &b = ref.at("A");

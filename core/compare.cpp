@@ -112,9 +112,12 @@ Frame difference_frame(const Frame& a, const Frame& b, const CompareResult& resu
   return d;
 }
 
+nlohmann::json json_figure(double x) {
+  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(number(x));
+}
+
 nlohmann::json CompareResult::to_json() const {
-  // JSON has no infinity: a non-finite figure is written as a string.
-  auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(number(x)); };
+  const auto num = json_figure;
   nlohmann::json j = {{"pass", pass}, {"layers", nlohmann::json::object()}};
   if (!problem.empty()) j["problem"] = problem;
   for (const auto& m : layers)

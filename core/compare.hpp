@@ -44,6 +44,9 @@ struct CompareResult {
   std::string verdict() const;  // one line
 };
 
+// A figure as JSON, which has no infinity: non-finite values become strings ("inf").
+nlohmann::json json_figure(double x);
+
 // Compares A against B (B is the reference).
 CompareResult compare_frames(const Frame& a, const Frame& b, const CompareOptions& options);
 // |A − B| for every channel of the compared layers.

@@ -29,7 +29,6 @@ class RasterKernel {
   uint64_t pixels_walked() const { return walked_; }
   uint64_t row_walked_before() const { return row_before_; }  // walked before this row
   uint64_t pixels_hidden() const { return hidden_; }
-  const std::vector<float>& depth_buffer() const { return inv_depth_; }  // 1/w, 0 = empty
 
   // Per pixel walked: the 1/w step (compares are free, as everywhere); per visible
   // pixel, the reciprocal; per seed (a row's first pixel, then every kSpanMax), the

@@ -38,7 +38,6 @@ void Setup::run() {
     if (quantum_.need_sync()) quantum_.sync();
   });
   quantum_.sync();
-  done_ = true;
   if (tracer_) tracer_->source_done();
 }
 

@@ -21,7 +21,6 @@ class Setup : public sc_core::sc_module, public BlockInfo {
   BlockStats stats() const override;
   const Schedule& schedule() const override { return schedule_; }
   Schedule& schedule() override { return schedule_; }
-  bool done() const { return done_; }
 
  private:
   void run();
@@ -31,7 +30,6 @@ class Setup : public sc_core::sc_module, public BlockInfo {
   sc_core::sc_time period_;
   tlm_utils::tlm_quantumkeeper quantum_;
   BlockStats stats_;
-  bool done_ = false;
 };
 
 }  // namespace modules
