@@ -19,12 +19,18 @@ const std::vector<SettingSpec>& pipeline_settings() {
        "constant increments of N (affine) or of N/w and 1/w (perspective)"},
       {"normalize.mode", "exact", {"exact", "forward-difference", "rsqrt0", "rsqrt1", "rsqrt2"},
        0, 0, "how the normal is normalized"},
+      {"bump_fetch.filter", "trilinear", {"nearest", "bilinear", "trilinear", "anisotropic"}, 0, 0,
+       "texture filter of the bump fetch (nearest and bilinear on the nearest mip level)"},
+      {"bump_fetch.probes", 4, {}, 1, 16, "anisotropic filter: trilinear probes along the footprint's major axis"},
+      {"bump_fetch.renormalize_mips", true, {}, 0, 0,
+       "normal maps built on load: renormalize the texels of every mip level"},
   };
   // Every block's timing: latency (cycles to its first result) and initiation interval
   // (cycles per unit of work). Model defaults, not figures from the papers.
   static const bool timing_added = [] {
     const std::pair<const char*, std::pair<int, int>> blocks[] = {
         {"setup", {16, 8}},         {"raster", {4, 1}},         {"normal_interp", {2, 1}},
+        {"bump_fetch", {24, 1}},    {"bump_perturb", {8, 1}},   {"normal_mux", {1, 1}},
         {"normalize", {12, 1}},     {"vector_interp", {20, 1}}, {"texture_fetch", {8, 1}},
         {"lighting", {10, 1}},      {"framebuffer", {2, 1}}};
     for (const auto& [block, t] : blocks) {

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/bump_map.hpp"
 #include "core/json_reader.hpp"
 #include "core/mesh_io.hpp"
 
@@ -19,8 +20,19 @@ namespace fs = std::filesystem;
 const char* to_string(ShadingPath p) {
   switch (p) {
     case ShadingPath::Phong: return "phong";
+    case ShadingPath::BumpClassic: return "bump-classic";
+    case ShadingPath::BumpTangent: return "bump-tangent";
+    case ShadingPath::BumpSquare: return "bump-square";
+    case ShadingPath::BumpObject: return "bump-object";
   }
   return "?";
+}
+
+ShadingPath parse_shading_path(const std::string& name) {
+  for (ShadingPath p : {ShadingPath::Phong, ShadingPath::BumpClassic, ShadingPath::BumpTangent, ShadingPath::BumpSquare,
+                        ShadingPath::BumpObject})
+    if (name == to_string(p)) return p;
+  throw std::invalid_argument("unknown shading path " + name);
 }
 
 // ---------------------------------------------------------------- camera
@@ -235,6 +247,30 @@ void check_camera(JsonReader& r, const Camera& c) {
   if (c.far <= c.near) r.fail("far", "must be greater than near");
 }
 
+// A material's bump-mapping inputs: a bump path needs a height map (or, except the
+// classic path, a precomputed normal map); either must be usable by the texture unit.
+void check_bump_material(JsonReader& r, const Material& m, const std::vector<Texture>& textures) {
+  const bool bump = m.path != ShadingPath::Phong;
+  if (!bump && m.normal_map >= 0) r.fail("normal_map", "given, but the path is phong (use a bump-* path)");
+  if (m.path == ShadingPath::BumpClassic && m.normal_map >= 0)
+    r.fail("normal_map", "the bump-classic path reads the height map, not a normal map");
+  if (bump && m.height_map < 0 && m.normal_map < 0)
+    r.fail("path", std::string(to_string(m.path)) + " needs a height_map" +
+                       (m.path == ShadingPath::BumpClassic ? "" : " or a normal_map") + " in material \"" +
+                       m.name + "\"");
+  if (r.has("square_k") && m.path != ShadingPath::BumpSquare) r.fail("square_k", "only the bump-square path uses it");
+  auto usable = [&](int index, const char* key) {
+    if (!bump || index < 0) return;
+    try {
+      check_height_map(textures[size_t(index)], textures[size_t(index)].name, "");
+    } catch (const InputError& e) {
+      r.fail(key, e.what());
+    }
+  };
+  usable(m.height_map, "height_map");
+  usable(m.normal_map, "normal_map");
+}
+
 }  // namespace
 
 Scene load_scene_text(const std::string& text, const std::string& name, const std::string& base_dir,
@@ -328,8 +364,11 @@ Scene load_scene_text(const std::string& text, const std::string& name, const st
       m.height_scale = r.number("height_scale", 0.0, 0, 1e6);
       if (r.has("height_scale") && m.height_map < 0)
         r.fail("height_scale", "given without a height_map");
-      r.choice("path", std::string("phong"), {"phong"});
-      m.path = ShadingPath::Phong;
+      m.normal_map = texture_ref(r, "normal_map", false);
+      m.square_k = r.number("square_k", 1.0, kMinLength, kMaxLength);
+      m.path = parse_shading_path(r.choice("path", std::string("phong"),
+                                           {"phong", "bump-classic", "bump-tangent", "bump-square", "bump-object"}));
+      check_bump_material(r, m, s.textures);
       r.finish();
       material_index[m.name] = static_cast<int>(s.materials.size());
       s.materials.push_back(m);

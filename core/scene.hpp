@@ -40,10 +40,18 @@ struct Light {
   glm::dvec3 radiance() const { return color * intensity; }
 };
 
-// Shading paths a material can select. The bump, parallax and texturing issues add
-// theirs here.
-enum class ShadingPath { Phong };
+// Shading paths a material can select (docs/scene-format.md). The bump paths: the
+// classic hardware of the bump-mapping paper's Fig. 2, and the proposed hardware of
+// Fig. 3 reading a texture of perturbed normals in tangent space (general form (9) or
+// square patch (10)–(11)) or in object space. Parallax and texturing add theirs here.
+enum class ShadingPath { Phong, BumpClassic, BumpTangent, BumpSquare, BumpObject };
 const char* to_string(ShadingPath p);
+ShadingPath parse_shading_path(const std::string& name);
+// Paths whose normal is fetched from a texture of perturbed normals (Fig. 3), lit in
+// the texture's space (tangent or object) rather than in world space.
+inline bool fetches_normal(ShadingPath p) {
+  return p == ShadingPath::BumpTangent || p == ShadingPath::BumpSquare || p == ShadingPath::BumpObject;
+}
 
 struct Material {
   std::string name;
@@ -51,7 +59,9 @@ struct Material {
   double shininess = 32;
   int texture = -1;       // colour texture modulating ambient and diffuse; -1 none
   int height_map = -1;    // height map (first channel); -1 none
-  double height_scale = 0;
+  double height_scale = 0;  // F = height_scale · h, in world units per unit of h
+  int normal_map = -1;    // precomputed perturbed normals (shadetlm precompute); -1 none
+  double square_k = 1;    // bump-square: |Pu| = |Pv| = k assumed (relative bump height)
   ShadingPath path = ShadingPath::Phong;
 };
 

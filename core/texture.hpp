@@ -18,6 +18,7 @@ struct Texture {
   std::vector<glm::vec4> texels;  // row-major, row 0 at the top
   Wrap wrap = Wrap::Repeat;
   bool srgb = false;  // the stored values are sRGB-encoded colours
+  std::vector<Texture> mips;  // levels 1 … of a mip-mapped EXR as read (else empty)
 
   glm::dvec4 texel(int x, int y) const;      // with the wrap mode applied
   glm::dvec4 bilinear(glm::dvec2 uv) const;  // of the stored (finest) level

@@ -36,6 +36,59 @@ glm::dvec3 shade(const core::Scene& scene, const core::Material& m, const glm::d
   return c;
 }
 
+namespace {
+
+// ∂h/∂u and ∂h/∂v of the bilinearly interpolated height map (first channel, finest
+// level) at uv: the exact derivatives of the surface that core::Texture::bilinear reads.
+glm::dvec2 height_gradient(const core::Texture& t, glm::dvec2 uv) {
+  const double s = uv.x * t.width - 0.5, r = (1.0 - uv.y) * t.height - 0.5;
+  const double fs = std::floor(s), fr = std::floor(r);
+  const double a = s - fs, b = r - fr;
+  const int x = int(fs), y = int(fr);
+  const double h00 = t.texel(x, y).r, h10 = t.texel(x + 1, y).r;
+  const double h01 = t.texel(x, y + 1).r, h11 = t.texel(x + 1, y + 1).r;
+  const double dh_ds = (1 - b) * (h10 - h00) + b * (h11 - h01);
+  const double dh_dr = (1 - a) * (h01 - h00) + a * (h11 - h10);
+  return {dh_ds * t.width, -dh_dr * t.height};  // s grows with u, r against v
+}
+
+// The shading normal of a bump-mapped material at a point with unit interpolated normal
+// n, texture coordinates uv and the triangle's position derivatives Pu, Pv: Blinn's
+// perturbed normal (4) of the exact height field, N' = c·n + Fu (n × Pv) + Fv (Pu × n)
+// with c = |Pu × Pv| (his form with the 1/|N| factors, N = c·n), normalized. A material
+// that has only a precomputed normal map reads it (bilinear, finest level) in the frame
+// of its path. `space` receives N' in the path's frame: world (classic), tangent
+// (T = Pu on the tangent plane, B = n × T, n) or object.
+glm::dvec3 bump_normal(const core::Scene& scene, const core::Object& object, const core::Material& m,
+                       const glm::dvec3& n, const glm::dvec2& uv, const glm::dvec3& Pu, const glm::dvec3& Pv,
+                       glm::dvec3& space) {
+  const glm::dvec3 pu_t = Pu - glm::dot(Pu, n) * n;
+  const bool frame = glm::dot(pu_t, pu_t) > 0 && glm::length(glm::cross(Pu, Pv)) > 0;
+  const glm::dvec3 T = frame ? glm::normalize(pu_t) : core::any_tangent(n), B = glm::cross(n, T);
+  const glm::dmat3 to_object = glm::transpose(glm::dmat3(object.model));
+  glm::dvec3 world;
+  if (m.height_map < 0) {  // a precomputed normal map only
+    const glm::dvec3 stored = glm::normalize(glm::dvec3(scene.textures[m.normal_map].bilinear(uv)));
+    world = m.path == core::ShadingPath::BumpObject ? glm::normalize(glm::inverse(to_object) * stored)
+                                                    : stored.x * T + stored.y * B + stored.z * n;
+  } else if (!frame) {
+    world = n;  // no tangent frame (uv without area): the surface is left unperturbed
+  } else {
+    const glm::dvec2 F = m.height_scale * height_gradient(scene.textures[m.height_map], uv);
+    const double c = glm::length(glm::cross(Pu, Pv));
+    world = glm::normalize(c * n + F.x * glm::cross(n, Pv) + F.y * glm::cross(Pu, n));
+  }
+  switch (m.path) {
+    case core::ShadingPath::BumpTangent:
+    case core::ShadingPath::BumpSquare: space = {glm::dot(world, T), glm::dot(world, B), glm::dot(world, n)}; break;
+    case core::ShadingPath::BumpObject: space = glm::normalize(to_object * world); break;
+    default: space = world;
+  }
+  return world;
+}
+
+}  // namespace
+
 Image render(const core::Scene& scene) {
   const core::Camera& cam = scene.camera;
   Image img;
@@ -62,6 +115,14 @@ Image render(const core::Scene& scene) {
       const glm::dvec3 Ng = glm::cross(P[1] - P[0], P[2] - P[0]);
       const double Ng2 = glm::dot(Ng, Ng);
       if (!(Ng2 > 0)) continue;
+      // Pu, Pv of the triangle: P1 − P0 = Pu du1 + Pv dv1, P2 − P0 = Pu du2 + Pv dv2
+      // (zero where the uv triangle has no area).
+      glm::dvec3 Pu(0), Pv(0);
+      if (material.path != core::ShadingPath::Phong) {
+        const glm::dvec2 t1 = mesh.uvs[tri.y] - mesh.uvs[tri.x], t2 = mesh.uvs[tri.z] - mesh.uvs[tri.x];
+        const double det = t1.x * t2.y - t2.x * t1.y;
+        if (det != 0) Pu = ((P[1] - P[0]) * t2.y - (P[2] - P[0]) * t1.y) / det, Pv = ((P[2] - P[0]) * t1.x - (P[1] - P[0]) * t2.x) / det;
+      }
       const auto poly = core::clip_triangle(view_projection * glm::dvec4(P[0], 1),
                                             view_projection * glm::dvec4(P[1], 1),
                                             view_projection * glm::dvec4(P[2], 1));
@@ -103,8 +164,13 @@ Image render(const core::Scene& scene) {
             const glm::dvec2 uv = b0 * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
             img.depth[i] = t;
             img.alpha[i] = 1;
-            img.normal[i] = N;
-            img.color[i] = shade(scene, material, X, N, uv);
+            if (material.path == core::ShadingPath::Phong) {
+              img.normal[i] = N;
+              img.color[i] = shade(scene, material, X, N, uv);
+            } else {
+              const glm::dvec3 bumped = bump_normal(scene, object, material, N, uv, Pu, Pv, img.normal[i]);
+              img.color[i] = shade(scene, material, X, bumped, uv);
+            }
           }
         }
       }

@@ -9,7 +9,9 @@
 //    plane; the barycentric coordinates of that point are exactly the
 //    perspective-correct ones;
 //  * the normal is the barycentric mix of the vertex normals, normalized exactly;
-//  * Blinn-Phong with every light (docs/shading-model.md).
+//  * bump-mapped materials: Blinn's perturbed normal of the exact height field, with
+//    the true per-pixel tangent frame (docs/bump-mapping.md);
+//  * Blinn-Phong with every light (docs/golden-model.md).
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -24,7 +26,10 @@ struct Image {
   std::vector<glm::dvec3> color;   // linear RGB; the background where nothing is covered
   std::vector<double> alpha;       // 1 covered, 0 not
   std::vector<double> depth;       // eye-space depth; +inf where nothing is covered
-  std::vector<glm::dvec3> normal;  // world-space unit normal; 0 where nothing is covered
+  // The unit shading normal, in the space its path lights in: world (phong,
+  // bump-classic), tangent (bump-tangent, bump-square), object (bump-object); 0 where
+  // nothing is covered.
+  std::vector<glm::dvec3> normal;
   size_t index(int x, int y) const { return size_t(y) * width + x; }
 };
 

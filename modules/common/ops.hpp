@@ -11,24 +11,26 @@ namespace modules {
 
 struct Ops {
   uint64_t add = 0, mul = 0, div = 0, sqrt = 0, rsqrt = 0, lut = 0, fetch = 0;
+  uint64_t line = 0;  // memory lines read by the texture unit (a cost, not arithmetic)
 
   Ops& operator+=(const Ops& o) {
     add += o.add; mul += o.mul; div += o.div; sqrt += o.sqrt; rsqrt += o.rsqrt; lut += o.lut;
-    fetch += o.fetch;
+    fetch += o.fetch; line += o.line;
     return *this;
   }
   Ops operator+(const Ops& o) const { return Ops(*this) += o; }
   Ops operator*(uint64_t n) const {
-    return {add * n, mul * n, div * n, sqrt * n, rsqrt * n, lut * n, fetch * n};
+    return {add * n, mul * n, div * n, sqrt * n, rsqrt * n, lut * n, fetch * n, line * n};
   }
   bool operator==(const Ops& o) const {
     return add == o.add && mul == o.mul && div == o.div && sqrt == o.sqrt && rsqrt == o.rsqrt &&
-           lut == o.lut && fetch == o.fetch;
+           lut == o.lut && fetch == o.fetch && line == o.line;
   }
+  // Operations of the datapaths and fetches (memory lines are not operations).
   uint64_t total() const { return add + mul + div + sqrt + rsqrt + lut + fetch; }
   nlohmann::json to_json() const {
     return {{"add", add}, {"mul", mul}, {"div", div}, {"sqrt", sqrt},
-            {"rsqrt", rsqrt}, {"lut", lut}, {"fetch", fetch}};
+            {"rsqrt", rsqrt}, {"lut", lut}, {"fetch", fetch}, {"line", line}};
   }
 };
 

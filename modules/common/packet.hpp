@@ -20,10 +20,13 @@ struct Plane {
   float at(int dx, int dy) const { return a0 + ax * float(dx) + ay * float(dy); }
 };
 
+// The material of a triangle made without a scene (testbenches): plain Phong.
+inline const core::Material kDefaultMaterial{};
+
 struct TriangleSetup {
   uint32_t id = 0;                     // running number in the frame
   int object = 0;
-  const core::Material* material = nullptr;
+  const core::Material* material = &kDefaultMaterial;
   core::SnappedTriangle coverage;      // the shared coverage convention
   int x_ref = 0, y_ref = 0;            // reference pixel: leftmost of the top covered row
 
@@ -37,7 +40,14 @@ struct TriangleSetup {
   float c = 0;                         // 2·|ΔN_H|², the radicand's second difference
   Plane l[kMaxLights][3];              // (light position − P)/w, point lights
   Plane v[3];                          // (eye − P)/w, local viewer
-  Plane uv[2];                         // uv/w
+  Plane uv[2];                         // uv/w (colour texture or bump map)
+  // Bump mapping (docs/bump-mapping.md). Fetched-normal paths: L and H of every light
+  // transformed into the texture's space (tangent or object) at the vertices, over w.
+  Plane lt[kMaxLights][3], ht[kMaxLights][3];
+  // Classic path (Fig. 2): n × Pv and Pu × n over w, and c = |Pu × Pv| (1 and zero
+  // vectors where the uv triangle has no area: no tangent frame, no perturbation).
+  Plane n_x_pv[3], pu_x_n[3];
+  float bump_c = 1;
 };
 
 struct SpanPacket {
@@ -53,6 +63,7 @@ struct SpanPacket {
   float n[3][kSpanMax];   // normal_interp, then normalize: the normal
   float l[kMaxLights][3][kSpanMax];  // vector_interp: unit L (point lights)
   float h[kMaxLights][3][kSpanMax];  // vector_interp: unit H (point lights or local viewer)
+  float bump[3][kSpanMax]; // bump_fetch: the filtered normal N' (fetched paths) or Fu, Fv (classic)
   float tex[3][kSpanMax]; // texture_fetch: colour texture
   float rgb[3][kSpanMax]; // lighting
 };

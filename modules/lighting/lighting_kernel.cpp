@@ -56,14 +56,17 @@ void LightingKernel::process(SpanPacket& p) {
   float n_dot_l[kSpanMax], n_dot_h[kSpanMax];
   if (capture_ && lights_.empty())  // no light: nothing to show, not a stale value
     for (int i = 0; i < count; ++i) captured_[0][i] = captured_[1][i] = 0;
+  // Fetched-normal bump paths light in the texture's space: L and H come per pixel.
+  const bool in_space = core::fetches_normal(m.path);
   for (size_t k = 0; k < lights_.size(); ++k) {
     const Light& s = lights_[k];
+    const bool l_varies = s.l_varies || in_space, h_varies = s.h_varies || in_space;
     for (int i = 0; i < count; ++i) {
       const float n[3] = {p.n[0][i], p.n[1][i], p.n[2][i]};
-      const float l[3] = {s.l_varies ? p.l[k][0][i] : s.l[0], s.l_varies ? p.l[k][1][i] : s.l[1],
-                          s.l_varies ? p.l[k][2][i] : s.l[2]};
-      const float h[3] = {s.h_varies ? p.h[k][0][i] : s.h[0], s.h_varies ? p.h[k][1][i] : s.h[1],
-                          s.h_varies ? p.h[k][2][i] : s.h[2]};
+      const float l[3] = {l_varies ? p.l[k][0][i] : s.l[0], l_varies ? p.l[k][1][i] : s.l[1],
+                          l_varies ? p.l[k][2][i] : s.l[2]};
+      const float h[3] = {h_varies ? p.h[k][0][i] : s.h[0], h_varies ? p.h[k][1][i] : s.h[1],
+                          h_varies ? p.h[k][2][i] : s.h[2]};
       n_dot_l[i] = dot3(n, l);
       n_dot_h[i] = dot3(n, h);
     }

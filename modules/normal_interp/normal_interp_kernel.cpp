@@ -47,6 +47,7 @@ void NormalInterpKernel::process(SpanPacket& p) {
     n_[1] += dh[1];
     n_[2] += dh[2];
   }
+  for (int c = 0; c < 3; ++c) range_.add(p.n[c], p.count);
   x_ += p.count;
   steps_ += uint64_t(p.count);
   last_steps_ = steps_ - steps_before;

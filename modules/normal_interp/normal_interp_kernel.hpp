@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "modules/common/packet.hpp"
+#include "modules/common/range.hpp"
 
 namespace modules {
 
@@ -27,7 +28,10 @@ class NormalInterpKernel {
   uint64_t steps() const { return steps_; }  // increments added, all kinds
   // Work of the last packet: one step per pixel, hidden pixels and row changes included.
   uint64_t work(const SpanPacket&) const { return last_steps_; }
-  bool bypass(const SpanPacket&) const { return false; }
+  // Fetched-normal bump paths replace the interpolated normal (the paper's multiplexer
+  // would discard it): their packets do not walk.
+  bool bypass(const SpanPacket& p) const { return core::fetches_normal(p.tri->material->path); }
+  Ranges ranges() const { return {{"n", range_}}; }
   // Waveforms: the interpolated (not yet normalized) normal, N or N/w.
   void set_capture(bool) {}
   static std::vector<std::string> trace_names() { return {"n_x", "n_y", "n_z"}; }
@@ -50,6 +54,7 @@ class NormalInterpKernel {
   float n_[3] = {0, 0, 0};     // the normal there
   uint64_t steps_ = 0, last_steps_ = 0;
   Ops ops_;
+  ValueRange range_;  // the walked normal, N or N/w
 };
 
 }  // namespace modules

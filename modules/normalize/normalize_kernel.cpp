@@ -38,9 +38,14 @@ void NormalizeKernel::process(SpanPacket& p) {
       const float n[3] = {p.n[0][i], p.n[1][i], p.n[2][i]};
       radicand_[i] = radicand(n);
     }
-  normalize_span(p.n[0], p.n[1], p.n[2], p.count, dh, t.c, mode_);
-  ops_ += normalize_ops_per_pixel(mode_) * uint64_t(p.count);
-  if (p.count > 0) ops_ += normalize_ops_per_span(mode_);
+  // The forward-difference radicand follows a normal that steps by ΔN_H along the span;
+  // a bump-mapped normal does not, so bump packets are normalized exactly instead.
+  const NormalizeMode mode = mode_ == NormalizeMode::ForwardDifference && t.material->path != core::ShadingPath::Phong
+                                 ? NormalizeMode::Exact
+                                 : mode_;
+  normalize_span(p.n[0], p.n[1], p.n[2], p.count, dh, t.c, mode);
+  ops_ += normalize_ops_per_pixel(mode) * uint64_t(p.count);
+  if (p.count > 0) ops_ += normalize_ops_per_span(mode);
 }
 
 }  // namespace modules

@@ -14,9 +14,9 @@
 namespace modules {
 
 const std::vector<std::string>& block_names() {
-  static const std::vector<std::string> names = {"setup",         "raster",        "normal_interp",
-                                                 "normalize",     "vector_interp", "texture_fetch",
-                                                 "lighting",      "framebuffer"};
+  static const std::vector<std::string> names = {
+      "setup",     "raster",        "normal_interp", "bump_fetch", "bump_perturb", "normal_mux",
+      "normalize", "vector_interp", "texture_fetch", "lighting",   "framebuffer"};
   return names;
 }
 
@@ -29,6 +29,9 @@ Options read_options(const core::Scene& scene) {
   o.perspective = scene.pipeline.string("normal_interp.mode") == "perspective";
   o.normalize = parse_normalize_mode(scene.pipeline.string("normalize.mode"));
   o.clock_mhz = scene.pipeline.number("clock_mhz");
+  o.bump.filter = parse_filter(scene.pipeline.string("bump_fetch.filter"));
+  o.bump.probes = scene.pipeline.integer("bump_fetch.probes");
+  o.bump.renormalize_mips = scene.pipeline.boolean("bump_fetch.renormalize_mips");
   for (const auto& b : block_names())
     o.timing[b] = Timing{uint64_t(scene.pipeline.integer(b + ".latency")),
                          uint64_t(scene.pipeline.integer(b + ".ii"))};
@@ -41,6 +44,9 @@ Kernels::Kernels(const core::Scene& scene, const Options& o)
       normalize(o.normalize),
       lighting(scene),
       framebuffer(scene) {
+  if (BumpFetchKernel::needed(scene)) bump_fetch.emplace(scene, o.bump);
+  if (BumpPerturbKernel::needed(scene)) bump_perturb.emplace(o.perspective);
+  if (NormalMuxKernel::needed(scene)) normal_mux.emplace();
   if (VectorInterpKernel::needed(scene)) vector_interp.emplace(scene, setup.point_lights());
   if (TextureFetchKernel::needed(scene)) texture_fetch.emplace(scene);
 }
@@ -52,6 +58,13 @@ void fill_counts(RenderResult& r, const Kernels& k) {
   r.triangles_drawn = k.setup.triangles_out();
   r.pixels_walked = k.raster.pixels_walked();
   r.pixels_hidden = k.raster.pixels_hidden();
+  r.precompute_s = k.bump_fetch ? k.bump_fetch->precompute_seconds() : 0.0;
+  for (auto& b : r.blocks) {
+    if (b.name == "normal_interp") b.ranges = k.normal_interp.ranges();
+    if (b.name == "bump_fetch") b.ranges = k.bump_fetch->ranges();
+    if (b.name == "bump_perturb") b.ranges = k.bump_perturb->ranges();
+    if (b.name == "vector_interp") b.ranges = k.vector_interp->ranges();
+  }
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -76,6 +89,9 @@ class Top : public sc_core::sc_module {
       return stage;
     };
     normal_interp_ = add(stage("normal_interp", k.normal_interp, o));
+    if (k.bump_fetch) bump_fetch_ = add(stage("bump_fetch", *k.bump_fetch, o));
+    if (k.bump_perturb) bump_perturb_ = add(stage("bump_perturb", *k.bump_perturb, o));
+    if (k.normal_mux) normal_mux_ = add(stage("normal_mux", *k.normal_mux, o));
     normalize_ = add(stage("normalize", k.normalize, o));
     if (k.vector_interp) vector_interp_ = add(stage("vector_interp", *k.vector_interp, o));
     if (k.texture_fetch) texture_fetch_ = add(stage("texture_fetch", *k.texture_fetch, o));
@@ -95,6 +111,9 @@ class Top : public sc_core::sc_module {
     setup_->attach(tracer_.get(), -1, timeline(inspect), 0, filter_);
     raster_->attach(tracer_.get(), probe("raster", Raster::trace_names()), timeline(inspect), 1, filter_);
     attach(normal_interp_.get(), probe, inspect);
+    attach(bump_fetch_.get(), probe, inspect);
+    attach(bump_perturb_.get(), probe, inspect);
+    attach(normal_mux_.get(), probe, inspect);
     attach(normalize_.get(), probe, inspect);
     attach(vector_interp_.get(), probe, inspect);
     attach(texture_fetch_.get(), probe, inspect);
@@ -128,6 +147,9 @@ class Top : public sc_core::sc_module {
   std::unique_ptr<Setup> setup_;
   std::unique_ptr<Raster> raster_;
   std::unique_ptr<Stage<NormalInterpKernel>> normal_interp_;
+  std::unique_ptr<Stage<BumpFetchKernel>> bump_fetch_;
+  std::unique_ptr<Stage<BumpPerturbKernel>> bump_perturb_;
+  std::unique_ptr<Stage<NormalMuxKernel>> normal_mux_;
   std::unique_ptr<Stage<NormalizeKernel>> normalize_;
   std::unique_ptr<Stage<VectorInterpKernel>> vector_interp_;
   std::unique_ptr<Stage<TextureFetchKernel>> texture_fetch_;
@@ -151,9 +173,12 @@ RenderResult render_loop(const core::Scene& scene) {
   const auto start = std::chrono::steady_clock::now();
   k.setup.run([&](const TriangleSetup& t) {
     k.raster.run(t, [&](SpanPacket& p) {
-      k.normal_interp.process(p);
+      if (!k.normal_interp.bypass(p)) k.normal_interp.process(p);
+      if (k.bump_fetch && !k.bump_fetch->bypass(p)) k.bump_fetch->process(p);
+      if (k.bump_perturb && !k.bump_perturb->bypass(p)) k.bump_perturb->process(p);
+      if (k.normal_mux) k.normal_mux->process(p);
       k.normalize.process(p);
-      if (k.vector_interp) k.vector_interp->process(p);
+      if (k.vector_interp && !k.vector_interp->bypass(p)) k.vector_interp->process(p);
       if (k.texture_fetch && !k.texture_fetch->bypass(p)) k.texture_fetch->process(p);
       k.lighting.process(p);
       k.framebuffer.process(p);
@@ -161,7 +186,6 @@ RenderResult render_loop(const core::Scene& scene) {
     });
   });
   r.wall_s = seconds_since(start);
-  fill_counts(r, k);
   auto report = [&](const char* name, const Ops& ops) {
     BlockReport b;
     b.name = name;
@@ -172,11 +196,15 @@ RenderResult render_loop(const core::Scene& scene) {
   report("setup", k.setup.ops());
   report("raster", k.raster.ops());
   report("normal_interp", k.normal_interp.ops());
+  if (k.bump_fetch) report("bump_fetch", k.bump_fetch->ops());
+  if (k.bump_perturb) report("bump_perturb", k.bump_perturb->ops());
+  if (k.normal_mux) report("normal_mux", k.normal_mux->ops());
   report("normalize", k.normalize.ops());
   if (k.vector_interp) report("vector_interp", k.vector_interp->ops());
   if (k.texture_fetch) report("texture_fetch", k.texture_fetch->ops());
   report("lighting", k.lighting.ops());
   report("framebuffer", k.framebuffer.ops());
+  fill_counts(r, k);
   r.frame = std::move(k.framebuffer.frame());
   return r;
 }
@@ -193,7 +221,6 @@ RenderResult render_systemc(const core::Scene& scene, const Inspect& inspect) {
   const auto start = std::chrono::steady_clock::now();
   sc_core::sc_start();
   r.wall_s = seconds_since(start);
-  fill_counts(r, k);
   for (BlockInfo* b : top.blocks()) {
     BlockReport br;
     br.name = b->block_name();
@@ -204,6 +231,7 @@ RenderResult render_systemc(const core::Scene& scene, const Inspect& inspect) {
     r.frame_cycles = std::max(r.frame_cycles, br.free_cycle + br.timing.latency);
     r.blocks.push_back(br);
   }
+  fill_counts(r, k);
   r.bin_cycles = inspect.bin_cycles;
   if (top.tracer() && std::filesystem::exists(inspect.vcd)) {
     r.trace_records = top.tracer()->records();
@@ -268,6 +296,7 @@ nlohmann::json RenderResult::stats_json() const {
   j["frame_cycles"] = frame_cycles;
   j["sim_time_s"] = double(frame_cycles) / (clock_mhz * 1e6);
   j["bottleneck"] = frame_cycles > 0 && bottleneck() ? nlohmann::json(bottleneck()->name) : nlohmann::json();
+  j["precompute_s"] = precompute_s;
   j["triangles"] = {{"in", triangles_in}, {"drawn", triangles_drawn}};
   j["pixels"] = {{"walked", pixels_walked}, {"hidden", pixels_hidden}, {"shaded", pixels_shaded}};
   j["blocks"] = nlohmann::json::object();
@@ -277,6 +306,7 @@ nlohmann::json RenderResult::stats_json() const {
                          {"latency", b.timing.latency},    {"ii", b.timing.ii},
                          {"ops", b.stats.ops.to_json()}};
     bj["utilization"] = frame_cycles > 0 ? double(b.stats.busy_cycles) / double(frame_cycles) : 0.0;
+    if (!b.ranges.empty()) bj["ranges"] = to_json(b.ranges);
     j["blocks"][b.name] = bj;
   }
   if (bin_cycles > 0 && frame_cycles > 0) {

@@ -1,8 +1,10 @@
 #pragma once
 // The pipeline: the blocks a scene needs, chained in the order of the papers' figures,
 //
-//   setup ─► raster ─► normal_interp ─► normalize ─► [vector_interp] ─► [texture_fetch]
-//         ─► lighting ─► framebuffer
+//   setup ─► raster ─► normal_interp ─► [bump_fetch] ─► [bump_perturb] ─► [normal_mux]
+//         ─► normalize ─► [vector_interp] ─► [texture_fetch] ─► lighting ─► framebuffer
+//
+// (the blocks in brackets only where some material needs them: docs/pipeline.md)
 //
 // run either as the SystemC/TLM-2.0 model (render_systemc) or as the same kernels in a
 // plain C++ loop (render_loop): the two give bit-identical frames, which shows that the
@@ -16,12 +18,15 @@
 
 #include "core/frame.hpp"
 #include "core/scene.hpp"
+#include "modules/bump_fetch/bump_fetch_kernel.hpp"
+#include "modules/bump_perturb/bump_perturb_kernel.hpp"
 #include "modules/common/block.hpp"
 #include "modules/common/timeline.hpp"
 #include "modules/common/trace.hpp"
 #include "modules/framebuffer/framebuffer_kernel.hpp"
 #include "modules/lighting/lighting_kernel.hpp"
 #include "modules/normal_interp/normal_interp_kernel.hpp"
+#include "modules/normal_mux/normal_mux_kernel.hpp"
 #include "modules/normalize/normalize_kernel.hpp"
 #include "modules/raster/raster_kernel.hpp"
 #include "modules/setup/setup_kernel.hpp"
@@ -37,6 +42,7 @@ struct Options {
   bool perspective = true;
   NormalizeMode normalize = NormalizeMode::Exact;
   double clock_mhz = 500;
+  BumpFetchKernel::Options bump;
   std::map<std::string, Timing> timing;  // by block name
 };
 // Reads the scene's pipeline section; throws core::InputError for what the pipeline
@@ -49,6 +55,9 @@ struct Kernels {
   SetupKernel setup;
   RasterKernel raster;
   NormalInterpKernel normal_interp;
+  std::optional<BumpFetchKernel> bump_fetch;      // only if a material has a bump path
+  std::optional<BumpPerturbKernel> bump_perturb;  // only for bump-classic
+  std::optional<NormalMuxKernel> normal_mux;      // only for the fetched-normal bump paths
   NormalizeKernel normalize;
   std::optional<VectorInterpKernel> vector_interp;  // only for point lights or a local viewer
   std::optional<TextureFetchKernel> texture_fetch;  // only if a material has a texture
@@ -62,6 +71,7 @@ struct BlockReport {
   Timing timing;
   uint64_t free_cycle = 0;  // when it finished its last work
   std::vector<uint64_t> busy_per_bin;  // busy cycles per Inspect::bin_cycles
+  Ranges ranges;                       // of the block's datapaths (docs/pipeline.md)
 };
 
 // What to record for inspection (docs/inspecting.md).
@@ -84,6 +94,7 @@ struct RenderResult {
   std::vector<BlockReport> blocks;  // elaborated blocks, in pipeline order
   uint64_t bin_cycles = 0;          // of the blocks' busy_per_bin (0: none)
   uint64_t trace_records = 0;       // pixels written to the VCD, all blocks
+  double precompute_s = 0;          // bump maps built when the pipeline was (not in wall_s)
 
   const BlockReport* bottleneck() const;  // the block with the most busy cycles
   Ops total_ops() const;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "modules/common/vector.hpp"
+
 namespace modules {
 
 SetupKernel::SetupKernel(const core::Scene& scene, bool perspective)
@@ -82,10 +84,89 @@ bool SetupKernel::setup(const Vertex v[3], const core::SnappedTriangle& coverage
       perspective_plane(t.v[c], eye[c] - v[0].position[c], eye[c] - v[1].position[c],
                         eye[c] - v[2].position[c]);
   }
-  if (t.material->texture >= 0)
+  if (t.material->texture >= 0 || t.material->path != core::ShadingPath::Phong)
     for (int c = 0; c < 2; ++c) perspective_plane(t.uv[c], v[0].uv[c], v[1].uv[c], v[2].uv[c]);
+  if (t.material->path != core::ShadingPath::Phong) setup_bump(v, inv_w, pu_, pv_, t, ops);
   ops_ += ops;
   return true;
+}
+
+void SetupKernel::setup_bump(const Vertex v[3], const float inv_w[3], glm::dvec3 pu, glm::dvec3 pv,
+                             TriangleSetup& t, Ops& ops) {
+  PlaneSolver<float> ps;
+  ps.dx1 = float(v[1].screen.x - v[0].screen.x);
+  ps.dy1 = float(v[1].screen.y - v[0].screen.y);
+  ps.dx2 = float(v[2].screen.x - v[0].screen.x);
+  ps.dy2 = float(v[2].screen.y - v[0].screen.y);
+  ps.inv_det = 1.0f / (ps.dx1 * ps.dy2 - ps.dx2 * ps.dy1);
+  ps.ox = float(t.x_ref + 0.5 - v[0].screen.x);
+  ps.oy = float(t.y_ref + 0.5 - v[0].screen.y);
+  // Values at the vertices, over w, as planes (as setup() does for the others).
+  auto planes = [&](Plane out[3], const glm::dvec3 value[3]) {
+    for (int c = 0; c < 3; ++c)
+      ps.solve(float(value[0][c]) * inv_w[0], float(value[1][c]) * inv_w[1], float(value[2][c]) * inv_w[2],
+               out[c].a0, out[c].ax, out[c].ay);
+    ops += kOpsPerPlane * 3;
+    ops.mul += 9;
+  };
+  glm::dvec3 n[3];
+  for (int k = 0; k < 3; ++k) n[k] = glm::normalize(v[k].normal);
+  ops += kOpsNormalize3 * 3;
+  const core::ShadingPath path = t.material->path;
+
+  if (path == core::ShadingPath::BumpClassic) {
+    const double c = glm::length(glm::cross(pu, pv));
+    glm::dvec3 x[3], y[3];
+    for (int k = 0; k < 3; ++k) {
+      x[k] = c > 0 ? glm::cross(n[k], pv) : glm::dvec3(0);
+      y[k] = c > 0 ? glm::cross(pu, n[k]) : glm::dvec3(0);
+    }
+    t.bump_c = c > 0 ? float(c) : 1.0f;  // no tangent frame: N unperturbed
+    planes(t.n_x_pv, x);
+    planes(t.pu_x_n, y);
+    ops += Ops{/*add*/ 3 + 18, /*mul*/ 6 + 36, 0, /*sqrt*/ 1};  // c; two cross products per vertex
+    return;
+  }
+  // Fetched-normal paths: L and H of every light at the vertices, in the texture's
+  // space — tangent (rows T, B = n × T, n) or object (to_object_) — as planes.
+  glm::dmat3 to_space[3];
+  for (int k = 0; k < 3; ++k) {
+    if (path == core::ShadingPath::BumpObject) {
+      to_space[k] = to_object_;
+    } else {
+      glm::dvec3 T = v[k].tangent - glm::dot(v[k].tangent, n[k]) * n[k];
+      T = glm::dot(T, T) > 1e-24 ? glm::normalize(T) : core::any_tangent(n[k]);
+      const glm::dvec3 B = glm::cross(n[k], T);
+      to_space[k] = glm::transpose(glm::dmat3(T, B, n[k]));  // rows T, B, n
+      ops += Ops{/*add*/ 3 + 2 + 3, /*mul*/ 6 + 6 + 6} + kOpsNormalize3;
+    }
+  }
+  const core::Camera& cam = scene_.camera;
+  for (size_t light = 0; light < scene_.lights.size() && light < size_t(kMaxLights); ++light) {
+    const core::Light& l = scene_.lights[light];
+    glm::dvec3 lv[3], hv[3];
+    for (int k = 0; k < 3; ++k) {
+      glm::dvec3 L = -l.direction;
+      if (l.type == core::Light::Type::Point) {
+        const glm::dvec3 d = l.position - v[k].position;
+        L = glm::dot(d, d) > 0 ? glm::normalize(d) : n[k];
+        ops += Ops{/*add*/ 3} + kOpsNormalize3;
+      }
+      glm::dvec3 V = -cam.forward();
+      if (cam.local_viewer) {
+        const glm::dvec3 d = cam.position - v[k].position;
+        V = glm::dot(d, d) > 0 ? glm::normalize(d) : n[k];
+        ops += Ops{/*add*/ 3} + kOpsNormalize3;
+      }
+      const glm::dvec3 h = L + V;
+      const glm::dvec3 H = glm::dot(h, h) > 0 ? glm::normalize(h) : n[k];
+      lv[k] = to_space[k] * L;
+      hv[k] = to_space[k] * H;
+      ops += Ops{/*add*/ 3 + 12, /*mul*/ 18} + kOpsNormalize3;  // H, two 3×3 products
+    }
+    planes(t.lt[light], lv);
+    planes(t.ht[light], hv);
+  }
 }
 
 }  // namespace modules

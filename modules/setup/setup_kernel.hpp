@@ -54,10 +54,12 @@ class SetupKernel {
   struct Vertex {  // a vertex of a clipped piece: exact (double) from the clipper
     glm::dvec2 screen;  // in pixels, exact (not snapped)
     double w;
-    glm::dvec3 position, normal;
+    glm::dvec3 position, normal, tangent;
     glm::dvec2 uv;
   };
   bool setup(const Vertex v[3], const core::SnappedTriangle& coverage, TriangleSetup& out);
+  // Bump-mapping planes (docs/bump-mapping.md); Pu, Pv of the whole triangle.
+  void setup_bump(const Vertex v[3], const float inv_w[3], glm::dvec3 pu, glm::dvec3 pv, TriangleSetup& t, Ops& ops);
 
   const core::Scene& scene_;
   bool perspective_;
@@ -67,6 +69,8 @@ class SetupKernel {
   Ops ops_;
   uint64_t triangles_in_ = 0, triangles_out_ = 0;
   TriangleSetup current_;
+  glm::dvec3 pu_{0}, pv_{0};      // of the current triangle (bump paths)
+  glm::dmat3 to_object_{1.0};    // of the current object: world vectors into object space
 };
 
 template <class Emit>
@@ -78,6 +82,9 @@ void SetupKernel::run(Emit&& emit) {
     const core::Mesh mesh = core::to_world(object);
     current_.object = int(o);
     current_.material = &scene_.materials[object.material];
+    const bool bump = current_.material->path != core::ShadingPath::Phong;
+    // L and H in object space: n_world ∝ M⁻ᵀ n_object, so n_world·L = n_object·(M⁻¹ L).
+    to_object_ = glm::inverse(glm::dmat3(object.model));
     for (const auto& t : mesh.triangles) {
       ++triangles_in_;
       const uint32_t idx[3] = {t.x, t.y, t.z};
@@ -86,6 +93,14 @@ void SetupKernel::run(Emit&& emit) {
       const glm::dvec3 ng = glm::cross(mesh.positions[idx[1]] - mesh.positions[idx[0]],
                                        mesh.positions[idx[2]] - mesh.positions[idx[0]]);
       if (!(glm::dot(ng, ng) > 0)) continue;
+      if (bump) {  // P1 − P0 = Pu du1 + Pv dv1, P2 − P0 = Pu du2 + Pv dv2; zero without uv area
+        const glm::dvec2 t1 = mesh.uvs[idx[1]] - mesh.uvs[idx[0]], t2 = mesh.uvs[idx[2]] - mesh.uvs[idx[0]];
+        const glm::dvec3 e1 = mesh.positions[idx[1]] - mesh.positions[idx[0]];
+        const glm::dvec3 e2 = mesh.positions[idx[2]] - mesh.positions[idx[0]];
+        const double det = t1.x * t2.y - t2.x * t1.y;
+        pu_ = det != 0 ? (e1 * t2.y - e2 * t1.y) / det : glm::dvec3(0);
+        pv_ = det != 0 ? (e2 * t1.x - e1 * t2.x) / det : glm::dvec3(0);
+      }
       glm::dvec4 clip[3];
       for (int k = 0; k < 3; ++k) clip[k] = view_projection_ * glm::dvec4(mesh.positions[idx[k]], 1.0);
       const auto poly = core::clip_triangle(clip[0], clip[1], clip[2]);
@@ -108,6 +123,8 @@ void SetupKernel::run(Emit&& emit) {
           v[k].position = b.x * mesh.positions[idx[0]] + b.y * mesh.positions[idx[1]] + b.z * mesh.positions[idx[2]];
           v[k].normal = b.x * mesh.normals[idx[0]] + b.y * mesh.normals[idx[1]] + b.z * mesh.normals[idx[2]];
           v[k].uv = b.x * mesh.uvs[idx[0]] + b.y * mesh.uvs[idx[1]] + b.z * mesh.uvs[idx[2]];
+          v[k].tangent = b.x * glm::dvec3(mesh.tangents[idx[0]]) + b.y * glm::dvec3(mesh.tangents[idx[1]]) +
+                         b.z * glm::dvec3(mesh.tangents[idx[2]]);
         }
         if (!setup(v, coverage, current_)) continue;
         current_.id = id++;

@@ -7,7 +7,9 @@
 namespace modules {
 
 VectorInterpKernel::VectorInterpKernel(const core::Scene& scene, const std::vector<int>& point_lights)
-    : local_viewer_(scene.camera.local_viewer) {
+    : light_count_(int(std::min(scene.lights.size(), size_t(kMaxLights)))),
+      world_(needed_in_world(scene)),
+      local_viewer_(scene.camera.local_viewer) {
   const glm::dvec3 v = -scene.camera.forward();
   for (int c = 0; c < 3; ++c) view_[c] = float(v[c]);
   for (size_t i = 0; i < scene.lights.size(); ++i) {
@@ -22,6 +24,14 @@ VectorInterpKernel::VectorInterpKernel(const core::Scene& scene, const std::vect
 }
 
 bool VectorInterpKernel::needed(const core::Scene& scene) {
+  if (needed_in_world(scene)) return true;
+  if (scene.lights.empty()) return false;
+  for (const auto& o : scene.objects)
+    if (core::fetches_normal(scene.materials[size_t(o.material)].path)) return true;
+  return false;
+}
+
+bool VectorInterpKernel::needed_in_world(const core::Scene& scene) {
   if (scene.camera.local_viewer) return !scene.lights.empty();
   for (const auto& l : scene.lights)
     if (l.type == core::Light::Type::Point) return true;
@@ -29,7 +39,11 @@ bool VectorInterpKernel::needed(const core::Scene& scene) {
 }
 
 void VectorInterpKernel::trace(const SpanPacket& p, int i, double* out) const {
-  const LightSlot& s = lights_.front();  // the block exists only if some light is here
+  if (core::fetches_normal(p.tri->material->path) || lights_.empty()) {  // light 0, in the texture's space
+    for (int c = 0; c < 3; ++c) out[c] = p.l[0][c][i], out[3 + c] = p.h[0][c][i];
+    return;
+  }
+  const LightSlot& s = lights_.front();
   for (int c = 0; c < 3; ++c) {
     out[c] = s.plane >= 0 ? p.l[s.light][c][i] : s.direction[c];
     out[3 + c] = p.h[s.light][c][i];
@@ -53,7 +67,37 @@ Ops VectorInterpKernel::ops_per_span() const {
   return Ops{/*add*/ 6, /*mul*/ 6} * uint64_t(vectors);  // three plane seeds each
 }
 
+Ops VectorInterpKernel::ops_per_pixel_in_space() const {
+  const Ops interpolate{/*add*/ 3, /*mul*/ 3};  // ×w, then one step of the plane
+  return (interpolate + kOpsNormalize3) * uint64_t(2 * light_count_);
+}
+
+void VectorInterpKernel::process_in_space(SpanPacket& p) {
+  const TriangleSetup& t = *p.tri;
+  const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
+  for (int k = 0; k < light_count_; ++k) {
+    float l_w[3], h_w[3];
+    for (int c = 0; c < 3; ++c) l_w[c] = t.lt[k][c].at(dx, dy), h_w[c] = t.ht[k][c].at(dx, dy);
+    for (int i = 0; i < p.count; ++i) {
+      const float w = p.w[i];
+      float l[3], h[3];
+      for (int c = 0; c < 3; ++c) {
+        l[c] = l_w[c] * w, h[c] = h_w[c] * w;
+        l_w[c] += t.lt[k][c].ax, h_w[c] += t.ht[k][c].ax;
+      }
+      l_range_.add(l, 3);
+      h_range_.add(h, 3);
+      normalize3(l);
+      normalize3(h);
+      for (int c = 0; c < 3; ++c) p.l[k][c][i] = l[c], p.h[k][c][i] = h[c];
+    }
+  }
+  ops_ += ops_per_pixel_in_space() * uint64_t(p.count);
+  if (p.count > 0) ops_ += Ops{/*add*/ 12, /*mul*/ 12} * uint64_t(light_count_);  // six plane seeds a light
+}
+
 void VectorInterpKernel::process(SpanPacket& p) {
+  if (core::fetches_normal(p.tri->material->path)) return process_in_space(p);
   const TriangleSetup& t = *p.tri;
   const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
   // Seeds of L/w and V/w at the packet's first pixel.
@@ -75,6 +119,7 @@ void VectorInterpKernel::process(SpanPacket& p) {
       float l[3] = {s.direction[0], s.direction[1], s.direction[2]};
       if (s.plane >= 0) {
         for (int c = 0; c < 3; ++c) l[c] = l_w[s.plane][c] * w, l_w[s.plane][c] += l_step[s.plane][c];
+        l_range_.add(l, 3);
         normalize3(l);
         for (int c = 0; c < 3; ++c) p.l[s.light][c][i] = l[c];
       }

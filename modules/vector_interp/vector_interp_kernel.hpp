@@ -5,26 +5,37 @@
 // exact; both are then normalized, and H = normalize(L̂ + V̂) is formed per pixel.
 // Directional lights have a constant L, a viewer at infinity a constant V: when every
 // light is directional and the viewer is at infinity, L and H are constant over the
-// frame and this block is not elaborated at all (needed() is false).
+// frame and this block does nothing for Phong packets (it is not elaborated at all
+// unless a bump material needs it).
+//
+// Fetched-normal bump paths (bump-mapping paper, Fig. 3) light in the texture's space:
+// L and H of every light, transformed into tangent (or object) space at the vertices
+// by setup, are interpolated here and normalized per pixel — the paper's vertex-only
+// transformation, whose error docs/bump-mapping.md measures.
 #include <string>
 #include <vector>
 
 #include "modules/common/packet.hpp"
+#include "modules/common/range.hpp"
 
 namespace modules {
 
 class VectorInterpKernel {
  public:
   VectorInterpKernel(const core::Scene& scene, const std::vector<int>& point_lights);
+  // World-space L or H vary over the frame (point lights, a local viewer).
+  static bool needed_in_world(const core::Scene& scene);
   static bool needed(const core::Scene& scene);
 
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
   uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }  // pixels
-  bool bypass(const SpanPacket&) const { return false; }
+  bool bypass(const SpanPacket& p) const { return !world_ && !core::fetches_normal(p.tri->material->path); }
+  Ranges ranges() const { return {{"l", l_range_}, {"h", h_range_}}; }
 
   Ops ops_per_pixel() const;
   Ops ops_per_span() const;
+  Ops ops_per_pixel_in_space() const;  // fetched-normal paths
 
   // Waveforms: L and H of the first light whose H varies.
   void set_capture(bool) {}
@@ -37,8 +48,13 @@ class VectorInterpKernel {
     int plane;  // slot of its L/w planes in TriangleSetup::l, or -1 (directional)
     float direction[3];  // unit L of a directional light
   };
+  void process_in_space(SpanPacket& p);
+
   std::vector<LightSlot> lights_;
+  int light_count_;  // all the scene's lights
+  bool world_;       // needed_in_world()
   bool local_viewer_;
+  ValueRange l_range_, h_range_;  // interpolated, before normalization
   float view_[3];  // unit V of a viewer at infinity
   Ops ops_;
 };

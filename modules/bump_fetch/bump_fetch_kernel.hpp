@@ -1,0 +1,76 @@
+#pragma once
+// The bump fetch (bump-mapping paper, Fig. 3 "texture fetch N'_ts"; Fig. 2 "fetch Fu,
+// Fv"): per pixel, perspective-correct uv and its screen derivatives, then the texture
+// unit's filter (modules/common/sampler.hpp) on the material's map:
+//
+//   bump-tangent, bump-square   the perturbed normal [a, b, c] in tangent space
+//   bump-object                 the perturbed normal in object space
+//   bump-classic                the height map's derivatives Fu, Fv
+//
+// Maps a scene names (normal_map) are used as stored; the others are computed when the
+// pipeline is built, from the height map (core/bump_map.hpp) and, for the general
+// tangent and object forms, from the object's surface — so one per object. Phong
+// packets pass by untouched.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "modules/common/packet.hpp"
+#include "modules/common/range.hpp"
+#include "modules/common/sampler.hpp"
+
+namespace modules {
+
+class BumpFetchKernel {
+ public:
+  struct Options {
+    Filter filter = Filter::Trilinear;
+    int probes = 4;
+    bool renormalize_mips = true;
+  };
+  BumpFetchKernel(const core::Scene& scene, const Options& options);
+  static bool needed(const core::Scene& scene);
+
+  void process(SpanPacket& p);
+  const Ops& ops() const { return ops_; }
+  uint64_t work(const SpanPacket& p) const { return uint64_t(p.count) * uint64_t(sampler_.probes_per_pixel()); }
+  bool bypass(const SpanPacket& p) const { return p.tri->material->path == core::ShadingPath::Phong; }
+
+  double precompute_seconds() const { return precompute_s_; }
+  Ranges ranges() const { return {{"uv", uv_range_}, {"fetched", fetched_range_}}; }
+
+  // Waveforms: uv, the LOD and the filtered value.
+  void set_capture(bool on) { capture_ = on; }
+  static std::vector<std::string> trace_names() { return {"u", "v", "lod", "value_x", "value_y", "value_z"}; }
+  void trace(const SpanPacket& p, int i, double* out) const {
+    for (int c = 0; c < 3; ++c) out[c] = captured_[c][i];
+    for (int c = 0; c < 3; ++c) out[3 + c] = p.bump[c][i];
+  }
+
+  // Per pixel outside the filter: uv (2 mul, 2 add) and its four derivatives
+  // ((∂(u/w) − u ∂(1/w))·w: 2 mul, 1 add each).
+  static constexpr Ops kOpsPerPixel{/*add*/ 6, /*mul*/ 10};
+  static constexpr Ops kOpsPerSpan{/*add*/ 4, /*mul*/ 4};  // two plane seeds
+
+ private:
+  struct Map {
+    core::Texture base;
+    std::vector<core::Texture> levels;
+    MipMap mip;
+  };
+  const Map& build(const core::Scene& scene, const core::Object& object, const core::Material& m);
+
+  const core::Scene& scene_;
+  Options options_;
+  Sampler sampler_;
+  std::vector<std::unique_ptr<Map>> maps_;
+  std::vector<const Map*> map_of_object_;  // by object index; nullptr: no bump map
+  double precompute_s_ = 0;
+  Ops ops_;
+  ValueRange uv_range_, fetched_range_;
+  bool capture_ = false;
+  float captured_[3][kSpanMax] = {};
+};
+
+}  // namespace modules

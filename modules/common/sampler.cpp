@@ -1,0 +1,144 @@
+#include "modules/common/sampler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace modules {
+
+Filter parse_filter(const std::string& name) {
+  if (name == "nearest") return Filter::Nearest;
+  if (name == "bilinear") return Filter::Bilinear;
+  if (name == "trilinear") return Filter::Trilinear;
+  if (name == "anisotropic") return Filter::Anisotropic;
+  throw std::invalid_argument("unknown filter " + name);
+}
+
+namespace {
+
+// Texel coordinates (s, r) of (u, v) on a level of W × H texels, with the wrap mode
+// applied as in core::Texture: s, r end within one texel of [0, W) × [0, H).
+void texel_coordinates(const core::Texture& t, float u, float v, float& s, float& r) {
+  const float W = float(t.width), H = float(t.height);
+  s = u * W - 0.5f, r = (1.0f - v) * H - 0.5f;
+  if (t.wrap == core::Wrap::Repeat) {
+    s -= W * std::floor(s / W);
+    r -= H * std::floor(r / H);
+    if (s >= W) s -= W;  // a tiny negative s rounds to exactly W
+    if (r >= H) r -= H;
+  } else {
+    s = std::fmin(std::fmax(s, -1.0f), W);
+    r = std::fmin(std::fmax(r, -1.0f), H);
+  }
+}
+
+int wrap(int i, int n, core::Wrap w) {
+  if (w == core::Wrap::Repeat) return i >= n ? i - n : i < 0 ? i + n : i;
+  return std::clamp(i, 0, n - 1);
+}
+
+// Per probe: texel coordinates (2 mul, 3 add), fractions (2 add), four reads, three
+// channels of three lerps (9 mul, 18 add).
+constexpr Ops kOpsBilinear{/*add*/ 23, /*mul*/ 11, 0, 0, 0, 0, /*fetch*/ 4};
+constexpr Ops kOpsNearest{/*add*/ 3, /*mul*/ 2, 0, 0, 0, 0, /*fetch*/ 1};
+// Between two levels: the LOD's fraction (1 add), three lerps (3 mul, 6 add).
+constexpr Ops kOpsLevelBlend{/*add*/ 7, /*mul*/ 3};
+
+}  // namespace
+
+void Sampler::touch(int level, int x, int y) {
+  const uint64_t line = (uint64_t(level) << 48) | (uint64_t(uint32_t(y) >> 2) << 24) | uint64_t(uint32_t(x) >> 2);
+  for (int k = 0; k < line_count_; ++k)
+    if (lines_[k] == line) return;
+  if (line_count_ < int(std::size(lines_))) lines_[line_count_++] = line;
+}
+
+void Sampler::nearest(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops) {
+  float s, r;
+  texel_coordinates(t, u, v, s, r);
+  const int x = wrap(int(std::floor(s + 0.5f)), t.width, t.wrap), y = wrap(int(std::floor(r + 0.5f)), t.height, t.wrap);
+  touch(level, x, y);
+  const glm::vec4& c = t.texels[size_t(y) * size_t(t.width) + size_t(x)];
+  out[0] = c[0], out[1] = c[1], out[2] = c[2];
+  ops += kOpsNearest;
+}
+
+void Sampler::bilinear(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops) {
+  float s, r;
+  texel_coordinates(t, u, v, s, r);
+  const float fs = std::floor(s), fr = std::floor(r);
+  const float a = s - fs, b = r - fr;
+  const int x0 = wrap(int(fs), t.width, t.wrap), x1 = wrap(int(fs) + 1, t.width, t.wrap);
+  const int y0 = wrap(int(fr), t.height, t.wrap), y1 = wrap(int(fr) + 1, t.height, t.wrap);
+  touch(level, x0, y0), touch(level, x1, y0), touch(level, x0, y1), touch(level, x1, y1);
+  const glm::vec4* row0 = &t.texels[size_t(y0) * size_t(t.width)];
+  const glm::vec4* row1 = &t.texels[size_t(y1) * size_t(t.width)];
+  const glm::vec4 t00 = row0[x0], t10 = row0[x1], t01 = row1[x0], t11 = row1[x1];
+  for (int c = 0; c < 3; ++c) {
+    const float top = t00[c] + (t10[c] - t00[c]) * a;
+    const float bottom = t01[c] + (t11[c] - t01[c]) * a;
+    out[c] = top + (bottom - top) * b;
+  }
+  ops += kOpsBilinear;
+}
+
+void Sampler::trilinear(const MipMap& map, float lod, float u, float v, float out[3], Ops& ops) {
+  const int last = int(map.levels.size()) - 1;
+  const int l0 = std::min(int(lod), last);
+  bilinear(*map.levels[size_t(l0)], l0, u, v, out, ops);
+  const float f = lod - float(l0);
+  if (l0 == last || f <= 0) return;  // on a level: one probe
+  float upper[3];
+  bilinear(*map.levels[size_t(l0) + 1], l0 + 1, u, v, upper, ops);
+  for (int c = 0; c < 3; ++c) out[c] += (upper[c] - out[c]) * f;
+  ops += kOpsLevelBlend;
+}
+
+void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx, float dudy, float dvdy,
+                     float out[3], Ops& ops) {
+  line_count_ = 0;
+  const core::Texture& base = *map.levels.front();
+  const float W = float(base.width), H = float(base.height);
+  // The footprint's axes in texels of the finest level (4 mul), their squared lengths
+  // (4 mul, 2 add); the LOD is half the log2 of a squared length (1 lut, 1 mul).
+  const float ax = dudx * W, ay = dvdx * H, bx = dudy * W, by = dvdy * H;
+  const float a2 = ax * ax + ay * ay, b2 = bx * bx + by * by;
+  ops += Ops{/*add*/ 2, /*mul*/ 10, 0, 0, 0, /*lut*/ 1};
+  const float last = float(map.levels.size() - 1);
+  auto lod_of = [&](float squared) {
+    const float l = squared > 1.0f ? 0.5f * std::log2(squared) : 0.0f;
+    return std::isfinite(l) ? std::min(l, last) : last;  // clamped to the chain
+  };
+  if (filter_ == Filter::Anisotropic) {
+    // Probes along the major axis, spaced by its length over N; the level of that
+    // spacing, but never finer than the minor axis (1 mul for the N², 2 mul per step).
+    const bool a_major = a2 >= b2;
+    const float major2 = a_major ? a2 : b2, minor2 = a_major ? b2 : a2;
+    const float n = float(probes_);
+    lod_ = lod_of(std::max(minor2, major2 / (n * n)));
+    const float du = (a_major ? dudx : dudy) / n, dv = (a_major ? dvdx : dvdy) / n;
+    ops += Ops{0, /*mul*/ 3};
+    float sum[3] = {0, 0, 0};
+    for (int k = 0; k < probes_; ++k) {
+      const float offset = float(k) + 0.5f - 0.5f * n;  // centred on the pixel
+      float probe[3];
+      trilinear(map, lod_, u + du * offset, v + dv * offset, probe, ops);
+      for (int c = 0; c < 3; ++c) sum[c] += probe[c];
+      ops += Ops{/*add*/ 5, /*mul*/ 2};  // the probe's position, the sum
+    }
+    for (int c = 0; c < 3; ++c) out[c] = sum[c] / n;
+    ops += Ops{0, /*mul*/ 3};  // by 1/N
+  } else {
+    lod_ = lod_of(std::max(a2, b2));
+    if (filter_ == Filter::Trilinear) {
+      trilinear(map, lod_, u, v, out, ops);
+    } else {
+      const int level = std::min(int(lod_ + 0.5f), int(last));  // the nearest level
+      if (filter_ == Filter::Bilinear) bilinear(*map.levels[size_t(level)], level, u, v, out, ops);
+      else nearest(*map.levels[size_t(level)], level, u, v, out, ops);
+    }
+  }
+  ops.line += uint64_t(line_count_);
+}
+
+}  // namespace modules

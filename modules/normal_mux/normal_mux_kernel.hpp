@@ -1,0 +1,48 @@
+#pragma once
+// The multiplexer of the bump-mapping paper's Fig. 3 — the one block the proposed
+// hardware adds to the Phong hardware of Fig. 1: per packet it selects what goes on to
+// the normalize block, the interpolated normal (phong, and bump-classic, whose
+// perturbed normal replaces it) or the normal fetched from the texture of perturbed
+// normals (bump-tangent, bump-square, bump-object). A select is wiring, not arithmetic:
+// no operations are counted.
+#include <string>
+#include <vector>
+
+#include "modules/common/packet.hpp"
+
+namespace modules {
+
+class NormalMuxKernel {
+ public:
+  static bool needed(const core::Scene& scene);
+
+  void process(SpanPacket& p) {
+    if (!core::fetches_normal(p.tri->material->path)) return;
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < p.count; ++i) p.n[c][i] = p.bump[c][i];
+  }
+  const Ops& ops() const { return ops_; }
+  uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }
+  bool bypass(const SpanPacket&) const { return false; }
+
+  // Waveforms: which input is selected (1: the fetched normal), and the normal out.
+  void set_capture(bool) {}
+  static std::vector<std::string> trace_names() { return {"select_fetched", "n_x", "n_y", "n_z"}; }
+  void trace(const SpanPacket& p, int i, double* out) const {
+    out[0] = core::fetches_normal(p.tri->material->path) ? 1 : 0;
+    for (int c = 0; c < 3; ++c) out[1 + c] = p.n[c][i];
+  }
+
+ private:
+  Ops ops_;
+};
+
+}  // namespace modules
+
+namespace modules {
+inline bool NormalMuxKernel::needed(const core::Scene& scene) {
+  for (const auto& o : scene.objects)
+    if (core::fetches_normal(scene.materials[size_t(o.material)].path)) return true;
+  return false;
+}
+}  // namespace modules
