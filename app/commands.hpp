@@ -22,6 +22,7 @@ Command add_render_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_reference_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
+Command add_precompute_command(CLI::App& app);
 
 // Shared by the rendering commands.
 struct SceneOptions {

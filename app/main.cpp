@@ -22,7 +22,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", core::kVersion);
   app.require_subcommand(1);
   std::vector<app::Command> commands = {app::add_render_command(app), app::add_reference_command(app),
-                                        app::add_compare_command(app), app::add_bench_command(app)};
+                                        app::add_compare_command(app), app::add_bench_command(app),
+                                        app::add_precompute_command(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -19,6 +19,8 @@ const std::vector<SettingSpec>& pipeline_settings() {
        "constant increments of N (affine) or of N/w and 1/w (perspective)"},
       {"normalize.mode", "exact", {"exact", "forward-difference", "rsqrt0", "rsqrt1", "rsqrt2"},
        0, 0, "how the normal is normalized"},
+      {"vector_interp.bump_vectors", "unit", {"unit", "affine"}, 0, 0,
+       "fetched-normal bump paths: interpolate unit L and H (the paper's) or L and V as affine vectors"},
       {"bump_fetch.filter", "trilinear", {"nearest", "bilinear", "trilinear", "anisotropic"}, 0, 0,
        "texture filter of the bump fetch (nearest and bilinear on the nearest mip level)"},
       {"bump_fetch.probes", 4, {}, 1, 16, "anisotropic filter: trilinear probes along the footprint's major axis"},

@@ -21,7 +21,15 @@
 
 namespace {
 
-void check_golden(const std::string& name) {
+// The accuracy gate of a scene: by default every pixel's colour within 2⁻¹²; scenes
+// whose path approximates by design (bump mapping: central differences, filtering,
+// vertex-only L and H) are gated on PSNR instead, at a floor below the measured figure
+// (docs/bump-mapping.md keeps the figures and where the error comes from).
+struct Accuracy {
+  double min_psnr = 0;  // 0: the 2⁻¹² bound
+};
+
+void check_golden(const std::string& name, Accuracy gate = {}) {
   test::route_systemc_reports_to_failures();
   const std::string dir = test::source_path("golden/" + name);
   const core::Scene scene = core::load_scene(dir + "/scene.json");
@@ -43,7 +51,8 @@ void check_golden(const std::string& name) {
   rgb.fail = std::ldexp(1.0, -12);
   const core::CompareResult accuracy = core::compare_frames(frame, ref, rgb);
   INFO("colour error against the golden model: " << accuracy.verdict());
-  CHECK(accuracy.pass);
+  if (gate.min_psnr > 0) CHECK(accuracy.layers.at(0).psnr >= gate.min_psnr);
+  else CHECK(accuracy.pass);
   CHECK(frame.at("A") == ref.at("A"));  // identical coverage
 
   // 3. Regression against the accepted frame. Tolerances: a few float ulps, because
@@ -86,9 +95,30 @@ TEST_CASE("golden grazing-plane: a plane at a grazing angle", "[golden][systemc]
 TEST_CASE("golden point-light: point lights and a local viewer", "[golden][systemc]") { check_golden("point-light"); }
 TEST_CASE("golden demo: the built-in demo, textured", "[golden][systemc]") { check_golden("demo"); }
 
+// Bump mapping. Floors about 3 dB under the measured PSNR (in brackets).
+TEST_CASE("golden bump-plane: bump-tangent on a quad, point light, local viewer", "[golden][systemc]") {
+  // [24.1 dB] The paper's unit L and H, transformed at the 4 vertices of a 3×3 quad
+  // under a light 1 unit above it, interpolated: the vertex-only error dominates.
+  check_golden("bump-plane", {22});
+}
+TEST_CASE("golden bump-sphere: bump-classic on a sphere", "[golden][systemc]") {
+  check_golden("bump-sphere", {48});  // [51.9 dB] derivatives by central differences, trilinear
+}
+TEST_CASE("golden bump-torus: bump-square on a torus", "[golden][systemc]") {
+  check_golden("bump-torus", {41});  // [44.1 dB] the square-patch assumption (a torus is not square)
+}
+TEST_CASE("golden bump-knot: bump-tangent on a strongly curved mesh", "[golden][systemc]") {
+  check_golden("bump-knot", {44});  // [47.3 dB] the tangent frame turns fast between vertices
+}
+TEST_CASE("golden bump-object: bump-object, anisotropic filter", "[golden][systemc]") {
+  check_golden("bump-object", {44});  // [47.2 dB] object-space normals averaged by the filter
+}
+
 TEST_CASE("every golden folder has its test case", "[golden]") {
   // A scene added to golden/ without a TEST_CASE above would never be checked.
-  const std::set<std::string> covered = {"sphere", "torus", "knot", "grazing-plane", "point-light", "demo"};
+  const std::set<std::string> covered = {"sphere",      "torus",       "knot",       "grazing-plane", "point-light",
+                                         "demo",        "bump-plane",  "bump-sphere", "bump-torus",   "bump-knot",
+                                         "bump-object"};
   for (const auto& e : std::filesystem::directory_iterator(test::source_path("golden")))
     if (e.is_directory()) CHECK(covered.count(e.path().filename().string()) == 1);
 }

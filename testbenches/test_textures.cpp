@@ -18,7 +18,7 @@ core::Texture ramp(int w, int h, core::Wrap wrap) {
 }
 }  // namespace
 
-TEST_CASE("a texel centre reads back that texel; v = 1 is the top row", "[texture]") {
+TEST_CASE("a texel centre reads back that texel, and v = 1 is the top row", "[texture]") {
   const core::Texture t = ramp(8, 4, core::Wrap::Repeat);
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 8; ++x) {

@@ -43,7 +43,10 @@ struct TriangleSetup {
   Plane uv[2];                         // uv/w (colour texture or bump map)
   // Bump mapping (docs/bump-mapping.md). Fetched-normal paths: L and H of every light
   // transformed into the texture's space (tangent or object) at the vertices, over w.
+  // With vector_interp.bump_vectors = affine: L = light − P (or the unit direction) and
+  // V = eye − P (or the unit view direction) instead, H formed per pixel (vt holds V).
   Plane lt[kMaxLights][3], ht[kMaxLights][3];
+  Plane vt[3];
   // Classic path (Fig. 2): n × Pv and Pu × n over w, and c = |Pu × Pv| (1 and zero
   // vectors where the uv triangle has no area: no tangent frame, no perturbation).
   Plane n_x_pv[3], pu_x_n[3];

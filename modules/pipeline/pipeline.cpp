@@ -29,6 +29,7 @@ Options read_options(const core::Scene& scene) {
   o.perspective = scene.pipeline.string("normal_interp.mode") == "perspective";
   o.normalize = parse_normalize_mode(scene.pipeline.string("normalize.mode"));
   o.clock_mhz = scene.pipeline.number("clock_mhz");
+  o.affine_bump_vectors = scene.pipeline.string("vector_interp.bump_vectors") == "affine";
   o.bump.filter = parse_filter(scene.pipeline.string("bump_fetch.filter"));
   o.bump.probes = scene.pipeline.integer("bump_fetch.probes");
   o.bump.renormalize_mips = scene.pipeline.boolean("bump_fetch.renormalize_mips");
@@ -39,7 +40,7 @@ Options read_options(const core::Scene& scene) {
 }
 
 Kernels::Kernels(const core::Scene& scene, const Options& o)
-    : setup(scene, o.perspective),
+    : setup(scene, o.perspective, o.affine_bump_vectors),
       raster(scene.camera.width, scene.camera.height),
       normalize(o.normalize),
       lighting(scene),
@@ -47,7 +48,7 @@ Kernels::Kernels(const core::Scene& scene, const Options& o)
   if (BumpFetchKernel::needed(scene)) bump_fetch.emplace(scene, o.bump);
   if (BumpPerturbKernel::needed(scene)) bump_perturb.emplace(o.perspective);
   if (NormalMuxKernel::needed(scene)) normal_mux.emplace();
-  if (VectorInterpKernel::needed(scene)) vector_interp.emplace(scene, setup.point_lights());
+  if (VectorInterpKernel::needed(scene)) vector_interp.emplace(scene, setup.point_lights(), o.affine_bump_vectors);
   if (TextureFetchKernel::needed(scene)) texture_fetch.emplace(scene);
 }
 

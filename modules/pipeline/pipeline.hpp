@@ -43,6 +43,7 @@ struct Options {
   NormalizeMode normalize = NormalizeMode::Exact;
   double clock_mhz = 500;
   BumpFetchKernel::Options bump;
+  bool affine_bump_vectors = false;  // vector_interp.bump_vectors
   std::map<std::string, Timing> timing;  // by block name
 };
 // Reads the scene's pipeline section; throws core::InputError for what the pipeline

@@ -7,9 +7,10 @@
 
 namespace modules {
 
-SetupKernel::SetupKernel(const core::Scene& scene, bool perspective)
+SetupKernel::SetupKernel(const core::Scene& scene, bool perspective, bool affine_bump_vectors)
     : scene_(scene),
       perspective_(perspective),
+      affine_bump_vectors_(affine_bump_vectors),
       view_projection_(scene.camera.projection() * scene.camera.view()),
       local_viewer_(scene.camera.local_viewer) {
   for (size_t i = 0; i < scene.lights.size(); ++i)
@@ -142,6 +143,22 @@ void SetupKernel::setup_bump(const Vertex v[3], const float inv_w[3], glm::dvec3
     }
   }
   const core::Camera& cam = scene_.camera;
+  if (affine_bump_vectors_) {
+    // L = light − P and V = eye − P, affine over the triangle, in the space of each vertex.
+    glm::dvec3 vv[3];
+    for (int k = 0; k < 3; ++k) vv[k] = to_space[k] * (cam.local_viewer ? cam.position - v[k].position : -cam.forward());
+    planes(t.vt, vv);
+    ops += Ops{/*add*/ 6 + 3, /*mul*/ 9} * 3;
+    for (size_t light = 0; light < scene_.lights.size() && light < size_t(kMaxLights); ++light) {
+      const core::Light& l = scene_.lights[light];
+      glm::dvec3 lv[3];
+      for (int k = 0; k < 3; ++k)
+        lv[k] = to_space[k] * (l.type == core::Light::Type::Point ? l.position - v[k].position : -l.direction);
+      planes(t.lt[light], lv);
+      ops += Ops{/*add*/ 6 + 3, /*mul*/ 9} * 3;
+    }
+    return;
+  }
   for (size_t light = 0; light < scene_.lights.size() && light < size_t(kMaxLights); ++light) {
     const core::Light& l = scene_.lights[light];
     glm::dvec3 lv[3], hv[3];

@@ -37,7 +37,8 @@ constexpr Ops kOpsPerPlane{/*add*/ 6, /*mul*/ 8};
 
 class SetupKernel {
  public:
-  SetupKernel(const core::Scene& scene, bool perspective);
+  // affine_bump_vectors: vector_interp.bump_vectors = affine (docs/bump-mapping.md).
+  SetupKernel(const core::Scene& scene, bool perspective, bool affine_bump_vectors = false);
 
   // Calls emit(const TriangleSetup&) for every triangle of the scene that covers a
   // pixel, in scene order (objects, then triangles, then clipped pieces).
@@ -63,6 +64,7 @@ class SetupKernel {
 
   const core::Scene& scene_;
   bool perspective_;
+  bool affine_bump_vectors_;
   glm::dmat4 view_projection_;
   std::vector<int> point_lights_;
   bool local_viewer_;

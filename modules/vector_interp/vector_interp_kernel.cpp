@@ -6,9 +6,11 @@
 
 namespace modules {
 
-VectorInterpKernel::VectorInterpKernel(const core::Scene& scene, const std::vector<int>& point_lights)
+VectorInterpKernel::VectorInterpKernel(const core::Scene& scene, const std::vector<int>& point_lights,
+                                       bool affine_bump_vectors)
     : light_count_(int(std::min(scene.lights.size(), size_t(kMaxLights)))),
       world_(needed_in_world(scene)),
+      affine_bump_vectors_(affine_bump_vectors),
       local_viewer_(scene.camera.local_viewer) {
   const glm::dvec3 v = -scene.camera.forward();
   for (int c = 0; c < 3; ++c) view_[c] = float(v[c]);
@@ -69,12 +71,39 @@ Ops VectorInterpKernel::ops_per_span() const {
 
 Ops VectorInterpKernel::ops_per_pixel_in_space() const {
   const Ops interpolate{/*add*/ 3, /*mul*/ 3};  // ×w, then one step of the plane
+  if (affine_bump_vectors_)  // V once; per light L, then H = normalize(L̂ + V̂)
+    return interpolate + kOpsNormalize3 + (interpolate + kOpsNormalize3 * 2 + Ops{/*add*/ 3}) * uint64_t(light_count_);
   return (interpolate + kOpsNormalize3) * uint64_t(2 * light_count_);
 }
 
 void VectorInterpKernel::process_in_space(SpanPacket& p) {
   const TriangleSetup& t = *p.tri;
   const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
+  if (affine_bump_vectors_) {
+    float view[kSpanMax][3];
+    float v_w[3];
+    for (int c = 0; c < 3; ++c) v_w[c] = t.vt[c].at(dx, dy);
+    for (int i = 0; i < p.count; ++i) {
+      for (int c = 0; c < 3; ++c) view[i][c] = v_w[c] * p.w[i], v_w[c] += t.vt[c].ax;
+      normalize3(view[i]);
+    }
+    for (int k = 0; k < light_count_; ++k) {
+      float l_w[3];
+      for (int c = 0; c < 3; ++c) l_w[c] = t.lt[k][c].at(dx, dy);
+      for (int i = 0; i < p.count; ++i) {
+        float l[3];
+        for (int c = 0; c < 3; ++c) l[c] = l_w[c] * p.w[i], l_w[c] += t.lt[k][c].ax;
+        l_range_.add(l, 3);
+        normalize3(l);
+        float h[3] = {l[0] + view[i][0], l[1] + view[i][1], l[2] + view[i][2]};
+        normalize3(h);
+        for (int c = 0; c < 3; ++c) p.l[k][c][i] = l[c], p.h[k][c][i] = h[c];
+      }
+    }
+    ops_ += ops_per_pixel_in_space() * uint64_t(p.count);
+    if (p.count > 0) ops_ += Ops{/*add*/ 6, /*mul*/ 6} * uint64_t(light_count_ + 1);  // three plane seeds a vector
+    return;
+  }
   for (int k = 0; k < light_count_; ++k) {
     float l_w[3], h_w[3];
     for (int c = 0; c < 3; ++c) l_w[c] = t.lt[k][c].at(dx, dy), h_w[c] = t.ht[k][c].at(dx, dy);

@@ -22,7 +22,7 @@ namespace modules {
 
 class VectorInterpKernel {
  public:
-  VectorInterpKernel(const core::Scene& scene, const std::vector<int>& point_lights);
+  VectorInterpKernel(const core::Scene& scene, const std::vector<int>& point_lights, bool affine_bump_vectors = false);
   // World-space L or H vary over the frame (point lights, a local viewer).
   static bool needed_in_world(const core::Scene& scene);
   static bool needed(const core::Scene& scene);
@@ -53,6 +53,7 @@ class VectorInterpKernel {
   std::vector<LightSlot> lights_;
   int light_count_;  // all the scene's lights
   bool world_;       // needed_in_world()
+  bool affine_bump_vectors_;
   bool local_viewer_;
   ValueRange l_range_, h_range_;  // interpolated, before normalization
   float view_[3];  // unit V of a viewer at infinity

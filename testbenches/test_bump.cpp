@@ -1,0 +1,302 @@
+// Bump mapping (docs/bump-mapping.md): the precomputation against closed forms, the
+// texture unit's filters, the paths against the golden model, and the skipping of the
+// bump blocks by materials that do not use them.
+#include <cmath>
+#include <cstring>
+#include <fstream>
+
+#include "core/bump_map.hpp"
+#include "core/compare.hpp"
+#include "core/frame.hpp"
+#include "modules/common/sampler.hpp"
+#include "modules/pipeline/pipeline.hpp"
+#include "reference/reference.hpp"
+#include "systemc_harness.hpp"
+#include "test_util.hpp"
+
+namespace {
+
+// A height map of W × H texels with h(x, y) = f(u, v) at the texel centres.
+template <class F>
+core::Texture height_map(int W, int H, core::Wrap wrap, F f) {
+  core::Texture t;
+  t.name = "test heights";
+  t.width = W, t.height = H, t.wrap = wrap;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const double u = (x + 0.5) / W, v = 1 - (y + 0.5) / H;
+      t.texels.push_back(glm::vec4(float(f(u, v)), 0, 0, 1));
+    }
+  return t;
+}
+
+// A scene of one object under a directional light, the viewer at infinity.
+std::string bump_scene(const std::string& object, const std::string& path, const std::string& extra = "") {
+  return R"({"format": 1,
+    "camera": {"position": [0, 1.2, 2.6], "target": [0, 0, 0], "resolution": [96, 72], "local_viewer": false},
+    "lights": [{"type": "directional", "direction": [-0.5, -0.7, -0.6]}],
+    "textures": {"bumps": {"type": "gradient-noise", "size": [128, 128], "cells": 4, "octaves": 2, "seed": 7}},
+    "materials": {"phong": {},
+                  "bumpy": {"height_map": "bumps", "height_scale": 0.04, "path": ")" +
+         path + R"(", "specular": [0.3, 0.3, 0.3], "shininess": 24 )" + extra + R"(}},
+    "objects": [)" + object + "]}";
+}
+const std::string kQuad = R"({"shape": "plane", "size": [2, 2], "material": "bumpy", "transform": {"rotate": [-60, 0, 0]}})";
+const std::string kSphere = R"({"shape": "sphere", "radius": 1, "segments": 48, "rings": 24, "material": "bumpy"})";
+
+double psnr_against_golden(const core::Scene& scene) {
+  const core::Frame frame = modules::render_loop(scene).frame;
+  const core::Frame ref = reference::to_frame(reference::render(scene));
+  core::CompareOptions o;
+  o.layers = {"RGB"};
+  return core::compare_frames(frame, ref, o).layers.at(0).psnr;
+}
+
+bool all_finite(const core::Frame& f) {
+  for (const auto& c : f.channels)
+    for (float v : c.values)
+      if (std::isnan(v)) return false;
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("height derivatives: a ramp has the ramp's slope everywhere, borders included", "[bump]") {
+  // h = u on a clamped map: Fu = scale, Fv = 0 (one-sided differences at the borders).
+  const core::Texture ramp_u = height_map(16, 8, core::Wrap::Clamp, [](double u, double) { return u; });
+  const core::Texture d = core::height_derivatives(ramp_u, 0.5);
+  for (const auto& t : d.texels) {
+    CHECK(t.r == Approx(0.5).margin(1e-5));
+    CHECK(t.g == Approx(0).margin(1e-5));
+  }
+  // h = v (rows run down, v up): Fv = scale.
+  const core::Texture ramp_v = height_map(8, 16, core::Wrap::Clamp, [](double, double v) { return v; });
+  for (const auto& t : core::height_derivatives(ramp_v, 2.0).texels) {
+    CHECK(t.r == Approx(0).margin(1e-5));
+    CHECK(t.g == Approx(2.0).margin(1e-4));
+  }
+  // A repeating sine: central differences of a period-1 sine, wrapped at the border.
+  const double pi2 = 2 * M_PI;
+  const core::Texture wave = height_map(64, 64, core::Wrap::Repeat, [&](double u, double) { return std::sin(pi2 * u); });
+  const core::Texture dw = core::height_derivatives(wave, 1.0);
+  for (int x : {0, 17, 63}) {
+    const double u = (x + 0.5) / 64, step = 1.0 / 64;
+    const double expected = (std::sin(pi2 * (u + step)) - std::sin(pi2 * (u - step))) / (2 * step);
+    CHECK(dw.texels[size_t(x)].r == Approx(expected).epsilon(1e-4));
+  }
+}
+
+TEST_CASE("perturbed normals: the general form (9) on a square patch equals the square form (10)-(11)", "[bump]") {
+  // A plane of side 3 with uv over [0, 1]²: |Pu| = |Pv| = 3 and Pu ⟂ Pv, the paper's
+  // square-patch assumption with k = 3, so (9) divided by k² is (10)–(11).
+  const core::Texture h = height_map(32, 32, core::Wrap::Repeat, [](double u, double v) {
+    return 0.5 + 0.25 * std::sin(2 * M_PI * u) * std::cos(4 * M_PI * v);
+  });
+  const core::Mesh plane = core::make_plane({3, 3}, {4, 4});
+  const core::Texture general = core::surface_normal_map(h, 0.3, plane, core::NormalMapForm::Tangent);
+  const core::Texture square = core::square_normal_map(h, 0.3, 3.0);
+  const core::Texture object = core::surface_normal_map(h, 0.3, plane, core::NormalMapForm::Object);
+  double worst = 0, worst_object = 0;
+  for (size_t i = 0; i < square.texels.size(); ++i) {
+    worst = std::max(worst, double(glm::length(glm::vec3(general.texels[i]) - glm::vec3(square.texels[i]))));
+    // The plane faces +z with u along +x, v along +y: object space is its tangent space.
+    worst_object = std::max(worst_object, double(glm::length(glm::vec3(object.texels[i]) - glm::vec3(square.texels[i]))));
+    CHECK(glm::length(glm::vec3(square.texels[i])) == Approx(1).epsilon(1e-6));
+  }
+  CHECK(worst < 1e-6);
+  CHECK(worst_object < 1e-6);
+  // And the square form is what (10)–(11) say: normalize(−Fu/k, −Fv/k, 1).
+  const core::Texture d = core::height_derivatives(h, 0.3);
+  const glm::dvec3 expected = glm::normalize(glm::dvec3(-d.texels[37].r / 3.0, -d.texels[37].g / 3.0, 1.0));
+  CHECK(glm::length(glm::dvec3(glm::vec3(square.texels[37])) - expected) < 1e-6);
+}
+
+TEST_CASE("mip chains: sizes, box averages, renormalization, and a lossless EXR round trip", "[bump]") {
+  const core::Texture h = height_map(16, 4, core::Wrap::Repeat, [](double u, double v) { return u * v; });
+  const core::Texture n = core::square_normal_map(h, 1.0, 1.0);
+  const auto plain = core::mip_levels(n, false), unit = core::mip_levels(n, true);
+  REQUIRE(plain.size() == 4);  // 8×2, 4×1, 2×1, 1×1
+  CHECK(plain[0].width == 8);
+  CHECK(plain[0].height == 2);
+  CHECK(plain[3].width == 1);
+  CHECK(plain[3].height == 1);
+  // Level 1 texel (0, 0) is the mean of the four texels above it.
+  const glm::vec4 mean = (n.texels[0] + n.texels[1] + n.texels[16] + n.texels[17]) * 0.25f;
+  CHECK(glm::length(plain[0].texels[0] - mean) < 1e-6f);
+  for (const auto& level : unit)
+    for (const auto& t : level.texels) CHECK(glm::length(glm::vec3(t)) == Approx(1).epsilon(1e-5));
+
+  const auto dir = test::temp_dir("mip-chain");
+  const std::string file = (dir / "chain.exr").string();
+  core::write_mip_chain(file, n, unit, {{"shadetlm:test", "yes"}});
+  const core::Texture back = core::load_texture_file(file);
+  REQUIRE(back.mips.size() == unit.size());
+  for (size_t i = 0; i < n.texels.size(); ++i) CHECK(glm::vec3(back.texels[i]) == glm::vec3(n.texels[i]));
+  for (size_t l = 0; l < unit.size(); ++l)
+    for (size_t i = 0; i < unit[l].texels.size(); ++i)
+      CHECK(glm::vec3(back.mips[l].texels[i]) == glm::vec3(unit[l].texels[i]));
+}
+
+TEST_CASE("height maps the texture unit cannot use are rejected with the file and the field", "[bump]") {
+  auto message = [](const core::Texture& t) {
+    try {
+      core::check_height_map(t, "h.png", "height_map");
+    } catch (const core::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  CHECK(message(height_map(16, 16, core::Wrap::Repeat, [](double, double) { return 0.5; })).empty());
+  CHECK(message(height_map(1, 1, core::Wrap::Repeat, [](double, double) { return 0.5; })).empty());   // flat
+  CHECK(message(height_map(32, 8, core::Wrap::Repeat, [](double, double) { return 0.5; })).empty());  // not square
+  CHECK(message(height_map(12, 16, core::Wrap::Repeat, [](double, double) { return 0.5; })).find("powers of two") !=
+        std::string::npos);
+  core::Texture nan = height_map(4, 4, core::Wrap::Repeat, [](double, double) { return 0.5; });
+  nan.texels[5].r = std::nanf("");
+  CHECK(message(nan).find("h.png: height_map: the height map holds NaN") == 0);
+  CHECK(message(core::Texture{}).find("empty") != std::string::npos);
+  // A 1×1 map is flat: its derivatives are zero and its normal is +z.
+  const core::Texture one = height_map(1, 1, core::Wrap::Repeat, [](double, double) { return 0.7; });
+  CHECK(glm::vec3(core::square_normal_map(one, 5.0, 1.0).texels[0]) == glm::vec3(0, 0, 1));
+}
+
+TEST_CASE("scenes: a bump path needs its map, and names the material when it has none", "[bump]") {
+  const auto e = test::scene_error(
+      R"({"format": 1, "camera": {"position": [0,0,3], "target": [0,0,0], "resolution": [8,8]},
+          "materials": {"rough": {"path": "bump-tangent"}}, "objects": [{"shape": "sphere", "material": "rough"}]})");
+  CHECK(std::string(e.what()).find("materials.rough.path") != std::string::npos);
+  CHECK(std::string(e.what()).find("\"rough\"") != std::string::npos);
+  const auto odd = test::scene_error(bump_scene(kQuad, "bump-tangent"), {"textures.bumps.size=[100,128]"});
+  CHECK(std::string(odd.what()).find("materials.bumpy.height_map") != std::string::npos);
+  CHECK(std::string(odd.what()).find("powers of two") != std::string::npos);
+  const auto k = test::scene_error(bump_scene(kQuad, "bump-tangent", R"(, "square_k": 2)"));
+  CHECK(std::string(k.what()).find("square_k") != std::string::npos);
+}
+
+TEST_CASE("texture unit: every filter returns a constant texture's value, with fetch and line counts", "[bump]") {
+  core::Texture c = height_map(64, 64, core::Wrap::Repeat, [](double, double) { return 0.25; });
+  const auto levels = core::mip_levels(c, false);
+  modules::MipMap map;
+  map.levels.push_back(&c);
+  for (const auto& l : levels) map.levels.push_back(&l);
+  for (auto f : {modules::Filter::Nearest, modules::Filter::Bilinear, modules::Filter::Trilinear,
+                 modules::Filter::Anisotropic}) {
+    modules::Sampler s(f, 4);
+    modules::Ops ops;
+    float out[3];
+    // A footprint 6 texels by 1.5 (LOD between levels 1 and 3): anisotropic.
+    s.sample(map, 0.3f, 0.6f, 6.0f / 64, 0, 0, 1.5f / 64, out, ops);
+    CHECK(out[0] == Approx(0.25f).epsilon(1e-6));
+    const uint64_t expected_fetches = f == modules::Filter::Nearest ? 1 : f == modules::Filter::Bilinear ? 4
+                                      : f == modules::Filter::Trilinear ? 8 : 4 * 8;
+    CHECK(ops.fetch == expected_fetches);
+    CHECK(ops.line >= 1);
+    CHECK(ops.line <= ops.fetch);
+  }
+  // LOD: a footprint of 4 texels reads level 2 exactly (bilinear there equals trilinear).
+  core::Texture ramp = height_map(64, 64, core::Wrap::Repeat, [](double u, double) { return u; });
+  const auto ramp_levels = core::mip_levels(ramp, false);
+  modules::MipMap rmap;
+  rmap.levels.push_back(&ramp);
+  for (const auto& l : ramp_levels) rmap.levels.push_back(&l);
+  modules::Sampler tri(modules::Filter::Trilinear, 1);
+  modules::Ops ops;
+  float out[3];
+  tri.sample(rmap, 0.5f, 0.5f, 4.0f / 64, 0, 0, 4.0f / 64, out, ops);
+  CHECK(tri.last_lod() == Approx(2.0f));
+  CHECK(ops.fetch == 4);  // on a level: one probe
+  CHECK(out[0] == Approx(ramp_levels[1].bilinear({0.5, 0.5}).r).epsilon(1e-5));
+}
+
+TEST_CASE("the proposed path (bump-tangent, trilinear) is within 1 dB PSNR of the classic path", "[bump][accuracy]") {
+  // The paper's gate, against the exact Blinn bump of the golden model, on a flat quad
+  // and on a sphere.
+  for (const std::string& object : {kQuad, kSphere}) {
+    const double classic = psnr_against_golden(core::load_scene_text(bump_scene(object, "bump-classic"), "q", "."));
+    const double proposed = psnr_against_golden(core::load_scene_text(bump_scene(object, "bump-tangent"), "q", "."));
+    INFO(object << ": classic " << classic << " dB, proposed " << proposed << " dB");
+    CHECK(proposed >= classic - 1.0);
+    // Both are far from a flat shading of the same surface: the bumps are really there.
+    const double phong =
+        psnr_against_golden(core::load_scene_text(bump_scene(object, "bump-classic"), "q", ".", {"materials.bumpy.height_scale=0"}));
+    CHECK(phong > 90);  // no relief: the paths and the golden model agree closely
+    CHECK(classic > 35);
+  }
+}
+
+TEST_CASE("a material without bump mapping costs the bump blocks nothing", "[bump]") {
+  // A Phong-only scene elaborates none of them.
+  const modules::RenderResult plain =
+      modules::render_loop(core::load_scene_text(bump_scene(kSphere, "bump-tangent"), "s", ".", {"objects.0.material=phong"}));
+  for (const auto& b : plain.blocks) {
+    CHECK(b.name != "bump_fetch");
+    CHECK(b.name != "bump_perturb");
+    CHECK(b.name != "normal_mux");
+    CHECK(b.name != "vector_interp");  // directional light, viewer at infinity
+  }
+  // Side by side, a Phong sphere adds nothing to the bump blocks' operations.
+  const std::string two = kSphere.substr(0, kSphere.size() - 1) + R"(, "transform": {"translate": [-1.2, 0, 0]}}, )" +
+                          R"({"shape": "sphere", "radius": 1, "material": "phong", "transform": {"translate": [1.2, 0, -3]}})";
+  const auto ops_of = [](const modules::RenderResult& r, const std::string& block) {
+    for (const auto& b : r.blocks)
+      if (b.name == block) return b.stats.ops;
+    return modules::Ops{};
+  };
+  const modules::RenderResult mixed = modules::render_loop(core::load_scene_text(bump_scene(two, "bump-tangent"), "m", "."));
+  const modules::RenderResult alone = modules::render_loop(
+      core::load_scene_text(bump_scene(kSphere.substr(0, kSphere.size() - 1) + R"(, "transform": {"translate": [-1.2, 0, 0]}})",
+                                       "bump-tangent"), "a", "."));
+  CHECK(mixed.pixels_shaded > alone.pixels_shaded);
+  for (const char* block : {"bump_fetch", "normal_mux", "vector_interp"}) {
+    INFO(block);
+    CHECK(ops_of(mixed, block) == ops_of(alone, block));
+  }
+  CHECK(ops_of(alone, "bump_fetch").fetch > 0);
+}
+
+TEST_CASE("a uv triangle without area neither crashes nor puts NaN into the frame", "[bump]") {
+  // A mesh whose uvs are all equal: no tangent frame anywhere.
+  const auto dir = test::temp_dir("degenerate-uv");
+  {
+    std::ofstream obj(dir / "flat-uv.obj");
+    obj << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0.5 0.5\nvn 0 0 1\nf 1/1/1 2/1/1 3/1/1\nf 1/1/1 3/1/1 4/1/1\n";
+  }
+  for (const char* path : {"bump-classic", "bump-tangent", "bump-square", "bump-object"}) {
+    INFO(path);
+    std::string text = bump_scene(R"({"shape": "mesh", "file": "flat-uv.obj", "material": "bumpy"})", path);
+    const core::Scene scene = core::load_scene_text(text, "d", dir.string());
+    const modules::RenderResult r = modules::render_loop(scene);
+    CHECK(r.pixels_shaded > 0);
+    CHECK(all_finite(r.frame));
+    CHECK(all_finite(reference::to_frame(reference::render(scene))));
+  }
+}
+
+TEST_CASE("bump paths: SystemC pipeline and plain loop give the same bits", "[bump][systemc]") {
+  test::route_systemc_reports_to_failures();
+  // Every bump path and Phong in one frame, so that packets of all kinds follow each other.
+  std::string objects;
+  const char* paths[] = {"bump-classic", "bump-tangent", "bump-square", "bump-object"};
+  std::string materials;
+  for (int k = 0; k < 4; ++k) {
+    objects += std::string(k ? ", " : "") + R"({"shape": "sphere", "radius": 0.45, "material": "m)" + std::to_string(k) +
+               R"(", "transform": {"translate": [)" + std::to_string(-1.5 + k) + ", 0, 0]}}";
+    materials += std::string(", \"m") + std::to_string(k) + R"(": {"height_map": "bumps", "height_scale": 0.03, "path": ")" +
+                 paths[k] + "\"}";
+  }
+  std::string text = bump_scene(objects + R"(, {"shape": "plane", "size": [6, 3], "material": "phong",
+      "transform": {"translate": [0, 0, -1]}})", "bump-tangent");
+  text.replace(text.find("\"phong\": {}"), 11, "\"phong\": {}" + materials);
+  const core::Scene scene = core::load_scene_text(text, "all", ".", {"pipeline.bump_fetch.filter=anisotropic"});
+  const modules::RenderResult sc = modules::render_systemc(scene);
+  const modules::RenderResult loop = modules::render_loop(scene);
+  for (const auto& c : sc.frame.channels) {
+    INFO(c.name);
+    CHECK(std::memcmp(c.values.data(), loop.frame.at(c.name).data(), c.values.size() * sizeof(float)) == 0);
+  }
+  std::vector<std::string> names;
+  for (const auto& b : sc.blocks) names.push_back(b.name);
+  CHECK(names == std::vector<std::string>{"setup", "raster", "normal_interp", "bump_fetch", "bump_perturb", "normal_mux",
+                                          "normalize", "vector_interp", "lighting", "framebuffer"});
+  CHECK(sc.total_ops() == loop.total_ops());
+}
