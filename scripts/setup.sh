@@ -14,6 +14,7 @@ packages=(
   nlohmann-json3-dev  # scene files
   libcli11-dev        # command line
   valgrind            # scripts/bench.sh: instruction counts
+  python3             # report scripts
 )
 
 missing=()

@@ -90,6 +90,26 @@ head -c 4000 /dev/urandom >noise.jpg; tex njpg.json noise.jpg; hostile garbage-j
 cp good.png picture.bmp;          tex bmp.json picture.bmp;  hostile unknown-image-type "picture.bmp" render bmp.json
 mkdir -p dir.png;                 tex dpng.json dir.png;     hostile image-is-a-folder "textures.t.file" render dpng.json
 
+# Bump mapping: materials and height maps, and `precompute normalmap`.
+bump() {  # bump SCENE MATERIAL-JSON [TEXTURE-SIZE]: a sphere of that material, a noise height map
+  scene "$1" '[{"shape": "sphere", "material": "m"}]' \
+    "{\"h\": {\"type\": \"value-noise\", \"size\": ${3:-[16,16]}}}"
+  sed -i "s/\"objects\"/\"materials\": {\"m\": $2}, \"objects\"/" "$1"
+}
+bump nomap.json '{"path": "bump-tangent"}';  hostile bump-without-map 'materials.m.path: bump-tangent needs a height_map' render nomap.json
+bump npot.json '{"path": "bump-classic", "height_map": "h"}' '[12,16]'
+hostile bump-height-not-power-of-two "materials.m.height_map" render npot.json
+bump phongnm.json '{"normal_map": "h"}';     hostile normal-map-on-phong "materials.m.normal_map" render phongnm.json
+bump classicnm.json '{"path": "bump-classic", "normal_map": "h"}'; hostile normal-map-on-classic "materials.m.normal_map" render classicnm.json
+"$bin" reference --set 'camera.resolution=[12,8]' -o odd.exr --preview odd.png >/dev/null
+hostile precompute-missing-height "absent.png" "$bin" precompute normalmap absent.png -o out.exr
+hostile precompute-truncated-height "trunc.png" "$bin" precompute normalmap trunc.png -o out.exr
+hostile precompute-not-power-of-two "powers of two" "$bin" precompute normalmap odd.png -o out.exr
+hostile precompute-form-needs-surface "--surface" "$bin" precompute normalmap good.png -o out.exr --form tangent
+hostile precompute-missing-surface "absent.obj" "$bin" precompute normalmap good.png -o out.exr --surface absent.obj
+mkdir -p nmdir.exr
+hostile precompute-output-is-a-folder "--output" "$bin" precompute normalmap good.png -o nmdir.exr
+
 # Frames given to compare, and options.
 hostile compare-truncated "trunc.exr" "$bin" compare trunc.exr good.exr --diff out.exr
 hostile compare-garbage "noise.exr" "$bin" compare good.exr noise.exr --diff out.exr
