@@ -23,10 +23,15 @@ echo "== wall time, one run =="
 
 echo
 echo "== instructions per shaded pixel (callgrind) =="
+# The render functions by their full signatures: a wildcard would also match the loop's
+# lambdas (render_loop(...)::{lambda...}), and callgrind toggles collection off again on
+# entering them.
+declare -A render_fn=([systemc]='modules::render_systemc(core::Scene const&, modules::Inspect const&)'
+                      [loop]='modules::render_loop(core::Scene const&)')
 count() {  # count LABEL SCENE RESOLUTION
   local label=$1 file=$2 res=$3
   for engine in systemc loop; do
-    valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.$engine" --toggle-collect="modules::render_$engine*" \
+    valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.$engine" --toggle-collect="${render_fn[$engine]}" \
       "$bin" render "$file" -o "$tmp/f.exr" --engine $engine --set "camera.resolution=$res" "${extra[@]}" \
       >"$tmp/out.$engine" 2>"$tmp/err.$engine" || { cat "$tmp/err.$engine" >&2; exit 1; }
     ir=$(sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$tmp/cg.$engine")
@@ -40,6 +45,8 @@ count "benchmark scene at 480x270 (3 lights, texture)" "$scene" "[480,270]"
 # The leanest Phong configuration: one directional light, viewer at infinity, no
 # texture (vector_interp and texture_fetch are not elaborated).
 count "golden/sphere at 960x720 (minimal Phong)" "$root/golden/sphere/scene.json" "[960,720]"
+count "golden/bump-sphere at 960x720 (bump-classic)" "$root/golden/bump-sphere/scene.json" "[960,720]"
+count "golden/bump-plane at 960x720 (bump-tangent)" "$root/golden/bump-plane/scene.json" "[960,720]"
 
 echo
 echo "== the cost of tracing =="
@@ -50,7 +57,7 @@ cmake --build "$notrace" -j"$(nproc)" --target shadetlm >/dev/null
 instructions() {  # instructions BINARY ARGS...: callgrind's count inside the SystemC render
   local b=$1
   shift
-  valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.t" --toggle-collect='modules::render_systemc*' \
+  valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.t" --toggle-collect="${render_fn[systemc]}" \
     "$b" render "$scene" -o "$tmp/t.exr" "$@" >/dev/null 2>&1
   sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$tmp/cg.t"
 }

@@ -1,6 +1,7 @@
 #include "modules/lighting/lighting_kernel.hpp"
 
 #include <cmath>
+#include <type_traits>
 
 #include "modules/common/vector.hpp"
 
@@ -60,16 +61,25 @@ void LightingKernel::process(SpanPacket& p) {
   const bool in_space = core::fetches_normal(m.path);
   for (size_t k = 0; k < lights_.size(); ++k) {
     const Light& s = lights_[k];
-    const bool l_varies = s.l_varies || in_space, h_varies = s.h_varies || in_space;
-    for (int i = 0; i < count; ++i) {
-      const float n[3] = {p.n[0][i], p.n[1][i], p.n[2][i]};
-      const float l[3] = {l_varies ? p.l[k][0][i] : s.l[0], l_varies ? p.l[k][1][i] : s.l[1],
-                          l_varies ? p.l[k][2][i] : s.l[2]};
-      const float h[3] = {h_varies ? p.h[k][0][i] : s.h[0], h_varies ? p.h[k][1][i] : s.h[1],
-                          h_varies ? p.h[k][2][i] : s.h[2]};
-      n_dot_l[i] = dot3(n, l);
-      n_dot_h[i] = dot3(n, h);
-    }
+    // N·L and N·H, with L and H from the packet or constant: one straight loop per case,
+    // so that each vectorizes.
+    auto dots = [&](auto l_varies, auto h_varies) {
+      for (int i = 0; i < count; ++i) {
+        const float n[3] = {p.n[0][i], p.n[1][i], p.n[2][i]};
+        const float l[3] = {l_varies ? p.l[k][0][i] : s.l[0], l_varies ? p.l[k][1][i] : s.l[1],
+                            l_varies ? p.l[k][2][i] : s.l[2]};
+        const float h[3] = {h_varies ? p.h[k][0][i] : s.h[0], h_varies ? p.h[k][1][i] : s.h[1],
+                            h_varies ? p.h[k][2][i] : s.h[2]};
+        n_dot_l[i] = dot3(n, l);
+        n_dot_h[i] = dot3(n, h);
+      }
+    };
+    using yes = std::true_type;
+    using no = std::false_type;
+    if (in_space || (s.l_varies && s.h_varies)) dots(yes{}, yes{});
+    else if (s.h_varies) dots(no{}, yes{});
+    else if (s.l_varies) dots(yes{}, no{});
+    else dots(no{}, no{});
     if (capture_ && k == 0)
       for (int i = 0; i < count; ++i) captured_[0][i] = n_dot_l[i], captured_[1][i] = n_dot_h[i];
     // No highlight from a light behind the surface (and none where H is undefined).

@@ -47,7 +47,9 @@ void NormalInterpKernel::process(SpanPacket& p) {
     n_[1] += dh[1];
     n_[2] += dh[2];
   }
-  for (int c = 0; c < 3; ++c) range_.add(p.n[c], p.count);
+  // N is affine along the span: its extremes are at the ends.
+  if (p.count > 0)
+    for (int c = 0; c < 3; ++c) range_.add(p.n[c], 1), range_.add(&p.n[c][p.count - 1], 1);
   x_ += p.count;
   steps_ += uint64_t(p.count);
   last_steps_ = steps_ - steps_before;
