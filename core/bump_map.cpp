@@ -89,12 +89,20 @@ Texture surface_normal_map(const Texture& height, double height_scale, const Mes
   out.name = height.name + (form == NormalMapForm::Tangent ? " (tangent-space normals)" : " (object-space normals)");
   const int W = d.width, H = d.height;
   std::vector<char> done(size_t(W) * H, 0);
+  size_t remaining = done.size();
   for (auto& t : out.texels) t = glm::vec4(0, 0, 1, 1);  // uncovered: unperturbed (tangent form), +z (object form)
 
   for (const auto& tri : mesh.triangles) {
+    if (remaining == 0) break;
     const uint32_t idx[3] = {tri.x, tri.y, tri.z};
-    glm::dvec2 st[3];  // the uv triangle in texel coordinates (x right, y down, centres at +½)
-    for (int k = 0; k < 3; ++k) st[k] = {mesh.uvs[idx[k]].x * W, (1.0 - mesh.uvs[idx[k]].y) * H};
+    // The uv triangle in texel coordinates (x right, y down, centres at +½), moved by
+    // whole periods next to the origin (repeated uv wraps onto the same texels).
+    const glm::dvec2 lowest = glm::floor(glm::min(glm::min(mesh.uvs[idx[0]], mesh.uvs[idx[1]]), mesh.uvs[idx[2]]));
+    glm::dvec2 st[3];
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec2 uv = mesh.uvs[idx[k]] - lowest;
+      st[k] = {uv.x * W, (1.0 - uv.y) * H};
+    }
     const double area = (st[1].x - st[0].x) * (st[2].y - st[0].y) - (st[2].x - st[0].x) * (st[1].y - st[0].y);
     if (!(std::abs(area) > 1e-12)) continue;  // no uv area: no parameterization to read
     // Pu, Pv: P1 − P0 = Pu du1 + Pv dv1, P2 − P0 = Pu du2 + Pv dv2.
@@ -104,11 +112,17 @@ Texture surface_normal_map(const Texture& height, double height_scale, const Mes
     const double det = t1.x * t2.y - t2.x * t1.y;
     const glm::dvec3 Pu = (e1 * t2.y - e2 * t1.y) / det, Pv = (e2 * t1.x - e1 * t2.x) / det;
     const double c = glm::length(glm::cross(Pu, Pv));
-    const int x0 = int(std::floor(std::min({st[0].x, st[1].x, st[2].x}))),
-              x1 = int(std::ceil(std::max({st[0].x, st[1].x, st[2].x})));
-    const int y0 = int(std::floor(std::min({st[0].y, st[1].y, st[2].y}))),
-              y1 = int(std::ceil(std::max({st[0].y, st[1].y, st[2].y})));
-    for (int y = y0; y <= y1; ++y)
+    if (!(c > 0) || !std::isfinite(c)) continue;  // no surface: no frame
+    // Mirrored parameterization (Pu × Pv against the normals): the relief keeps its sign.
+    const double sign =
+        glm::dot(glm::cross(Pu, Pv), mesh.normals[idx[0]] + mesh.normals[idx[1]] + mesh.normals[idx[2]]) < 0 ? -1 : 1;
+    // The texels the triangle covers; a triangle spanning many periods is visited over
+    // its first 4 (every texel of the map is reached long before).
+    const double x_lo = std::min({st[0].x, st[1].x, st[2].x}), y_lo = std::min({st[0].y, st[1].y, st[2].y});
+    const int x0 = int(std::floor(x_lo)), y0 = int(std::floor(y_lo));
+    const int x1 = int(std::min(std::ceil(std::max({st[0].x, st[1].x, st[2].x})), x_lo + 4.0 * W));
+    const int y1 = int(std::min(std::ceil(std::max({st[0].y, st[1].y, st[2].y})), y_lo + 4.0 * H));
+    for (int y = y0; y <= y1 && remaining > 0; ++y)
       for (int x = x0; x <= x1; ++x) {
         const glm::dvec2 q(x + 0.5, y + 0.5);
         auto edge = [&](glm::dvec2 a, glm::dvec2 b) { return ((b.x - a.x) * (q.y - a.y) - (q.x - a.x) * (b.y - a.y)) / area; };
@@ -119,21 +133,24 @@ Texture surface_normal_map(const Texture& height, double height_scale, const Mes
         const int tx = ((x % W) + W) % W, ty = ((y % H) + H) % H;
         const size_t at = size_t(ty) * W + tx;
         if (done[at]) continue;
-        done[at] = 1;
-        const glm::dvec3 n = glm::normalize(b0 * mesh.normals[idx[0]] + b1 * mesh.normals[idx[1]] +
-                                            b2 * mesh.normals[idx[2]]);
-        const double fu = d.texels[at].r, fv = d.texels[at].g;
-        const glm::dvec3 perturbed = c * n + fu * glm::cross(n, Pv) + fv * glm::cross(Pu, n);
+        const glm::dvec3 mixed = b0 * mesh.normals[idx[0]] + b1 * mesh.normals[idx[1]] + b2 * mesh.normals[idx[2]];
+        const glm::dvec3 pu_t = Pu - glm::dot(Pu, mixed) / glm::dot(mixed, mixed) * mixed;
+        if (!(glm::dot(mixed, mixed) > 0) || !(glm::dot(pu_t, pu_t) > 0)) continue;  // no frame here
+        const glm::dvec3 n = glm::normalize(mixed);
+        const double fu = sign * d.texels[at].r, fv = sign * d.texels[at].g;
         glm::dvec3 v;
         if (form == NormalMapForm::Object) {
-          v = to_object * perturbed;
+          v = to_object * (c * n + fu * glm::cross(n, Pv) + fv * glm::cross(Pu, n));
         } else {
-          const glm::dvec3 pu_t = Pu - glm::dot(Pu, n) * n;
           const glm::dvec3 T = glm::normalize(pu_t), B = glm::cross(n, T);
-          // (9): a = −Fu (B·Pv), b = Fu (T·Pv) − Fv |Pu|, c = |Pu × Pv|.
+          // (9): a = −Fu (B·Pv), b = Fu (T·Pv) − Fv |Pu|, c = |Pu × Pv| (Pu on the tangent plane).
           v = {-fu * glm::dot(B, Pv), fu * glm::dot(T, Pv) - fv * glm::length(pu_t), c};
         }
-        out.texels[at] = glm::vec4(glm::vec3(glm::normalize(v)), 1.0f);
+        const glm::dvec3 unit = glm::normalize(v);
+        if (!std::isfinite(unit.x) || !std::isfinite(unit.y) || !std::isfinite(unit.z)) continue;
+        out.texels[at] = glm::vec4(glm::vec3(unit), 1.0f);
+        done[at] = 1;
+        --remaining;
       }
   }
   return out;

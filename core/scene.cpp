@@ -215,7 +215,8 @@ Mesh read_shape(JsonReader& r, const std::string& shape, const std::string& base
     for (int k = 0; k < 2; ++k)
       if (!(size[k] >= kMinLength && size[k] <= kMaxLength)) r.fail("size", "must lie in [1e-6, 1e6]");
     const glm::dvec2 repeat = r.vec2("uv_repeat", glm::dvec2(1, 1));
-    if (repeat.x <= 0 || repeat.y <= 0) r.fail("uv_repeat", "must be positive");
+    if (!(repeat.x > 0 && repeat.y > 0 && repeat.x <= 1e4 && repeat.y <= 1e4))
+      r.fail("uv_repeat", "must lie in (0, 1e4]");
     return make_plane(size, r.ivec2("tessellation", glm::ivec2(1, 1), 1, 2048), repeat);
   }
   if (shape == "sphere")
@@ -259,6 +260,10 @@ void check_bump_material(JsonReader& r, const Material& m, const std::vector<Tex
                        (m.path == ShadingPath::BumpClassic ? "" : " or a normal_map") + " in material \"" +
                        m.name + "\"");
   if (r.has("square_k") && m.path != ShadingPath::BumpSquare) r.fail("square_k", "only the bump-square path uses it");
+  if (r.has("square_k") && m.normal_map >= 0)
+    r.fail("square_k", "a precomputed normal_map has its k built in (shadetlm precompute normalmap --k)");
+  if (m.normal_map >= 0 && textures[size_t(m.normal_map)].srgb)
+    r.fail("normal_map", "expects an EXR of unit normals (shadetlm precompute normalmap), not an 8- or 16-bit image");
   auto usable = [&](int index, const char* key) {
     if (!bump || index < 0) return;
     try {
@@ -398,6 +403,18 @@ Scene load_scene_text(const std::string& text, const std::string& name, const st
     }
     if (r.has("transform")) o.model = read_transform(r.object("transform"));
     o.cull_back = r.choice("cull", std::string("none"), {"none", "back"}) == "back";
+    if (s.materials[size_t(o.material)].path == ShadingPath::BumpObject) {
+      // Object-space normals and object-space L, H keep their angles only under a
+      // rotation and a uniform scale (docs/bump-mapping.md).
+      const glm::dmat3 m(o.model);
+      const glm::dmat3 g = glm::transpose(m) * m;
+      const double scale = (g[0][0] + g[1][1] + g[2][2]) / 3;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          if (std::abs(g[i][j] - (i == j ? scale : 0.0)) > 1e-9 * scale)
+            r.fail("transform", "bump-object needs a rotation and a uniform scale (object-space normals keep "
+                                "their angles to L and H only then); use bump-tangent");
+    }
     r.finish();
     s.objects.push_back(std::move(o));
   }

@@ -64,8 +64,10 @@ Texture read_exr_texture(const std::string& path) {
   Imf::InputFile in(path.c_str());
   const Imf::Header& header = in.header();
   const Imath::Box2i dw = header.dataWindow();
+  // A grey image (Y, no R) is read into R and copied to G and B: a frame buffer holds
+  // one slice per channel name.
   const bool grey = header.channels().findChannel("Y") && !header.channels().findChannel("R");
-  const char* names[4] = {grey ? "Y" : "R", grey ? "Y" : "G", grey ? "Y" : "B", "A"};
+  const char* names[4] = {grey ? "Y" : "R", "G", "B", "A"};
   auto read_level = [&](auto& file, int width, int height, Imath::Box2i window, auto read) {
     Texture l;
     l.width = width, l.height = height;
@@ -76,11 +78,15 @@ Texture read_exr_texture(const std::string& path) {
     Imf::FrameBuffer fb;
     char* origin = reinterpret_cast<char*>(l.texels.data()) -
                    (ptrdiff_t(window.min.x) + ptrdiff_t(window.min.y) * width) * ptrdiff_t(sizeof(glm::vec4));
-    for (int c = 0; c < 4; ++c)
+    for (int c = 0; c < 4; ++c) {
+      if (grey && (c == 1 || c == 2)) continue;
       fb.insert(names[c], Imf::Slice(Imf::FLOAT, origin + c * sizeof(float), sizeof(glm::vec4),
                                      sizeof(glm::vec4) * size_t(width), 1, 1, c == 3 ? 1.0 : 0.0));
+    }
     file.setFrameBuffer(fb);
     read(file);
+    if (grey)
+      for (auto& t : l.texels) t.g = t.b = t.r;
     return l;
   };
   t = read_level(in, dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, dw,

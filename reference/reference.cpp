@@ -41,6 +41,10 @@ namespace {
 // ∂h/∂u and ∂h/∂v of the bilinearly interpolated height map (first channel, finest
 // level) at uv: the exact derivatives of the surface that core::Texture::bilinear reads.
 glm::dvec2 height_gradient(const core::Texture& t, glm::dvec2 uv) {
+  // Whole periods off first (a repeating map), or the clamped border: the texel
+  // coordinates stay near the map, and their integer parts in int's range.
+  if (t.wrap == core::Wrap::Repeat) uv -= glm::floor(uv);
+  else uv = glm::clamp(uv, -1.0, 2.0);
   const double s = uv.x * t.width - 0.5, r = (1.0 - uv.y) * t.height - 0.5;
   const double fs = std::floor(s), fr = std::floor(r);
   const double a = s - fs, b = r - fr;
@@ -58,30 +62,39 @@ glm::dvec2 height_gradient(const core::Texture& t, glm::dvec2 uv) {
 // with c = |Pu × Pv| (his form with the 1/|N| factors, N = c·n), normalized. A material
 // that has only a precomputed normal map reads it (bilinear, finest level) in the frame
 // of its path. `space` receives N' in the path's frame: world (classic), tangent
-// (T = Pu on the tangent plane, B = n × T, n) or object.
+// (T = Pu on the tangent plane, B = n × T — times `sign` for the square patch, whose b
+// runs along Pv — and n) or object. `sign` is −1 where the parameterization is mirrored
+// against the normals (Pu × Pv points inwards): the relief keeps its sign.
 glm::dvec3 bump_normal(const core::Scene& scene, const core::Object& object, const core::Material& m,
                        const glm::dvec3& n, const glm::dvec2& uv, const glm::dvec3& Pu, const glm::dvec3& Pv,
-                       glm::dvec3& space) {
+                       double sign, glm::dvec3& space) {
   const glm::dvec3 pu_t = Pu - glm::dot(Pu, n) * n;
-  const bool frame = glm::dot(pu_t, pu_t) > 0 && glm::length(glm::cross(Pu, Pv)) > 0;
-  const glm::dvec3 T = frame ? glm::normalize(pu_t) : core::any_tangent(n), B = glm::cross(n, T);
+  const double c = glm::length(glm::cross(Pu, Pv));
+  // No frame where the uv triangle has no area, or where the figures leave float's range
+  // (as the pipeline decides).
+  const bool frame = glm::dot(pu_t, pu_t) > 0 && c > 0 && std::isfinite(float(c)) &&
+                     std::isfinite(float(glm::length(Pu))) && std::isfinite(float(glm::length(Pv)));
+  const glm::dvec3 T = frame ? glm::normalize(pu_t) : core::any_tangent(n);
+  const glm::dvec3 B = (m.path == core::ShadingPath::BumpSquare ? sign : 1.0) * glm::cross(n, T);
   const glm::dmat3 to_object = glm::transpose(glm::dmat3(object.model));
   glm::dvec3 world;
-  if (m.height_map < 0) {  // a precomputed normal map only
+  if (!frame) {
+    world = n;  // no tangent frame: the surface is left unperturbed
+  } else if (m.height_map < 0) {  // a precomputed normal map only
     const glm::dvec3 stored = glm::normalize(glm::dvec3(scene.textures[m.normal_map].bilinear(uv)));
     world = m.path == core::ShadingPath::BumpObject ? glm::normalize(glm::inverse(to_object) * stored)
                                                     : stored.x * T + stored.y * B + stored.z * n;
-  } else if (!frame) {
-    world = n;  // no tangent frame (uv without area): the surface is left unperturbed
   } else {
-    const glm::dvec2 F = m.height_scale * height_gradient(scene.textures[m.height_map], uv);
-    const double c = glm::length(glm::cross(Pu, Pv));
+    const glm::dvec2 F = sign * m.height_scale * height_gradient(scene.textures[m.height_map], uv);
     world = glm::normalize(c * n + F.x * glm::cross(n, Pv) + F.y * glm::cross(Pu, n));
   }
   switch (m.path) {
     case core::ShadingPath::BumpTangent:
-    case core::ShadingPath::BumpSquare: space = {glm::dot(world, T), glm::dot(world, B), glm::dot(world, n)}; break;
-    case core::ShadingPath::BumpObject: space = glm::normalize(to_object * world); break;
+    case core::ShadingPath::BumpSquare:
+    case core::ShadingPath::BumpObject:
+      if (m.path == core::ShadingPath::BumpObject && frame) space = glm::normalize(to_object * world);
+      else space = {glm::dot(world, T), glm::dot(world, B), glm::dot(world, n)};  // no frame: a tangent frame
+      break;
     default: space = world;
   }
   return world;
@@ -118,10 +131,13 @@ Image render(const core::Scene& scene) {
       // Pu, Pv of the triangle: P1 − P0 = Pu du1 + Pv dv1, P2 − P0 = Pu du2 + Pv dv2
       // (zero where the uv triangle has no area).
       glm::dvec3 Pu(0), Pv(0);
+      double sign = 1;  // −1: uv mirrored against the normals
       if (material.path != core::ShadingPath::Phong) {
         const glm::dvec2 t1 = mesh.uvs[tri.y] - mesh.uvs[tri.x], t2 = mesh.uvs[tri.z] - mesh.uvs[tri.x];
         const double det = t1.x * t2.y - t2.x * t1.y;
         if (det != 0) Pu = ((P[1] - P[0]) * t2.y - (P[2] - P[0]) * t1.y) / det, Pv = ((P[2] - P[0]) * t1.x - (P[1] - P[0]) * t2.x) / det;
+        const glm::dvec3 normals = mesh.normals[tri.x] + mesh.normals[tri.y] + mesh.normals[tri.z];
+        if (glm::dot(glm::cross(Pu, Pv), normals) < 0) sign = -1;
       }
       const auto poly = core::clip_triangle(view_projection * glm::dvec4(P[0], 1),
                                             view_projection * glm::dvec4(P[1], 1),
@@ -168,7 +184,7 @@ Image render(const core::Scene& scene) {
               img.normal[i] = N;
               img.color[i] = shade(scene, material, X, N, uv);
             } else {
-              const glm::dvec3 bumped = bump_normal(scene, object, material, N, uv, Pu, Pv, img.normal[i]);
+              const glm::dvec3 bumped = bump_normal(scene, object, material, N, uv, Pu, Pv, sign, img.normal[i]);
               img.color[i] = shade(scene, material, X, bumped, uv);
             }
           }

@@ -3,6 +3,7 @@
 
 #include <stb_image_write.h>
 
+#include "core/frame.hpp"
 #include "core/texture.hpp"
 #include "test_util.hpp"
 
@@ -121,4 +122,20 @@ TEST_CASE("an unreadable image names the file", "[texture][bad]") {
     CHECK(e.file() == path);
   }
   CHECK_THROWS_AS(core::load_texture_file((dir / "t.bmp").string()), core::InputError);
+}
+
+TEST_CASE("a grey EXR (channel Y) reads as equal R, G and B", "[texture]") {
+  const auto dir = test::temp_dir("grey-exr");
+  core::Frame grey(4, 2);
+  auto& y = grey.add("Y");
+  for (size_t i = 0; i < y.size(); ++i) y[i] = 0.1f * float(i);
+  core::write_exr((dir / "grey.exr").string(), grey);
+  const core::Texture t = core::load_texture_file((dir / "grey.exr").string());
+  REQUIRE(t.texels.size() == 8);
+  for (size_t i = 0; i < 8; ++i) {
+    CHECK(t.texels[i].r == 0.1f * float(i));
+    CHECK(t.texels[i].g == t.texels[i].r);
+    CHECK(t.texels[i].b == t.texels[i].r);
+    CHECK(t.texels[i].a == 1.0f);
+  }
 }

@@ -72,9 +72,18 @@ const BumpFetchKernel::Map& BumpFetchKernel::build(const core::Scene& scene, con
 
 void BumpFetchKernel::process(SpanPacket& p) {
   const TriangleSetup& t = *p.tri;
+  if (!t.bump_frame) {  // no tangent frame: the unperturbed normal (+z), no derivatives
+    for (int i = 0; i < p.count; ++i) p.bump[0][i] = 0, p.bump[1][i] = 0, p.bump[2][i] = 1;
+    if (capture_)
+      for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < p.count; ++i) captured_[c][i] = 0;
+    return;
+  }
   const Map& map = *map_of_object_[size_t(t.object)];
   const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
   float u_w = t.uv[0].at(dx, dy), v_w = t.uv[1].at(dx, dy);
+  uv_range_.add_span(u_w, t.uv[0].ax, p.count, p.w);
+  uv_range_.add_span(v_w, t.uv[1].ax, p.count, p.w);
   for (int i = 0; i < p.count; ++i) {
     // uv = (uv/w)·w; its derivative along x is (∂(u/w)/∂x − u·∂(1/w)/∂x)·w.
     const float w = p.w[i];
@@ -86,8 +95,6 @@ void BumpFetchKernel::process(SpanPacket& p) {
     sampler_.sample(map.mip, u, v, dudx, dvdx, dudy, dvdy, out, ops_);
     for (int c = 0; c < 3; ++c) p.bump[c][i] = out[c];
     if (capture_) captured_[0][i] = u, captured_[1][i] = v, captured_[2][i] = sampler_.last_lod();
-    uv_range_.add(&u, 1);
-    uv_range_.add(&v, 1);
   }
   for (int c = 0; c < 3; ++c) fetched_range_.add(p.bump[c], p.count);
   ops_ += kOpsPerPixel * uint64_t(p.count);

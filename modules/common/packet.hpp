@@ -51,6 +51,7 @@ struct TriangleSetup {
   // vectors where the uv triangle has no area: no tangent frame, no perturbation).
   Plane n_x_pv[3], pu_x_n[3];
   float bump_c = 1;
+  bool bump_frame = true;  // false: no Pu, Pv (uv without area): the normal is not perturbed
 };
 
 struct SpanPacket {

@@ -20,6 +20,9 @@ namespace {
 // applied as in core::Texture: s, r end within one texel of [0, W) × [0, H).
 void texel_coordinates(const core::Texture& t, float u, float v, float& s, float& r) {
   const float W = float(t.width), H = float(t.height);
+  // Whole periods off first, so that far coordinates (a large uv_repeat) stay exact
+  // enough and their texel indices in int's range; hardware drops the integer bits.
+  if (t.wrap == core::Wrap::Repeat) u -= std::floor(u), v -= std::floor(v);
   s = u * W - 0.5f, r = (1.0f - v) * H - 0.5f;
   if (t.wrap == core::Wrap::Repeat) {
     s -= W * std::floor(s / W);
@@ -30,6 +33,7 @@ void texel_coordinates(const core::Texture& t, float u, float v, float& s, float
     s = std::fmin(std::fmax(s, -1.0f), W);
     r = std::fmin(std::fmax(r, -1.0f), H);
   }
+  if (!(s == s) || !(r == r)) s = r = 0;  // NaN uv (none reach here from the pipeline): texel 0
 }
 
 int wrap(int i, int n, core::Wrap w) {
@@ -103,7 +107,7 @@ void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx
   // (4 mul, 2 add); the LOD is half the log2 of a squared length (1 lut, 1 mul).
   const float ax = dudx * W, ay = dvdx * H, bx = dudy * W, by = dvdy * H;
   const float a2 = ax * ax + ay * ay, b2 = bx * bx + by * by;
-  ops += Ops{/*add*/ 2, /*mul*/ 10, 0, 0, 0, /*lut*/ 1};
+  ops += Ops{/*add*/ 2, /*mul*/ 9, 0, 0, 0, /*lut*/ 1};
   const float last = float(map.levels.size() - 1);
   auto lod_of = [&](float squared) {
     const float l = squared > 1.0f ? 0.5f * std::log2(squared) : 0.0f;
@@ -117,7 +121,8 @@ void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx
     const float n = float(probes_);
     lod_ = lod_of(std::max(minor2, major2 / (n * n)));
     const float du = (a_major ? dudx : dudy) / n, dv = (a_major ? dvdx : dvdy) / n;
-    ops += Ops{0, /*mul*/ 3};
+    ops += Ops{0, /*mul*/ 1, /*div*/ 1};  // N², major²/N²; the step by 1/N is a constant: 2 mul
+    ops.mul += 2;
     float sum[3] = {0, 0, 0};
     for (int k = 0; k < probes_; ++k) {
       const float offset = float(k) + 0.5f - 0.5f * n;  // centred on the pixel

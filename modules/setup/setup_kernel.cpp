@@ -115,31 +115,46 @@ void SetupKernel::setup_bump(const Vertex v[3], const float inv_w[3], glm::dvec3
   ops += kOpsNormalize3 * 3;
   const core::ShadingPath path = t.material->path;
 
+  // The triangle's tangent frame, from Pu and Pv (solved in run(): about 20 mul, 17 add,
+  // 1 div), and its orientation: s = −1 where the parameterization is mirrored against
+  // the shading normal, so that the relief stays a relief (N' = c·n + s·(…)). No frame
+  // where the uv triangle has no area or the figures leave float's range.
+  const glm::dvec3 pu_x_pv = glm::cross(pu, pv);
+  const double c = glm::length(pu_x_pv);
+  const bool frame = c > 0 && std::isfinite(float(c)) && std::isfinite(float(glm::length(pu))) &&
+                     std::isfinite(float(glm::length(pv)));
+  const double s = glm::dot(pu_x_pv, n[0] + n[1] + n[2]) < 0 ? -1.0 : 1.0;
+  t.bump_frame = frame;
+  ops += Ops{/*add*/ 17 + 5 + 8, /*mul*/ 20 + 9 + 3, /*div*/ 1, /*sqrt*/ 1};
+
   if (path == core::ShadingPath::BumpClassic) {
-    const double c = glm::length(glm::cross(pu, pv));
     glm::dvec3 x[3], y[3];
     for (int k = 0; k < 3; ++k) {
-      x[k] = c > 0 ? glm::cross(n[k], pv) : glm::dvec3(0);
-      y[k] = c > 0 ? glm::cross(pu, n[k]) : glm::dvec3(0);
+      x[k] = frame ? s * glm::cross(n[k], pv) : glm::dvec3(0);
+      y[k] = frame ? s * glm::cross(pu, n[k]) : glm::dvec3(0);
     }
-    t.bump_c = c > 0 ? float(c) : 1.0f;  // no tangent frame: N unperturbed
+    t.bump_c = frame ? float(c) : 1.0f;  // no tangent frame: N unperturbed
     planes(t.n_x_pv, x);
     planes(t.pu_x_n, y);
-    ops += Ops{/*add*/ 3 + 18, /*mul*/ 6 + 36, 0, /*sqrt*/ 1};  // c; two cross products per vertex
+    ops += Ops{/*add*/ 18, /*mul*/ 36 + 18};  // two cross products per vertex, the sign
     return;
   }
   // Fetched-normal paths: L and H of every light at the vertices, in the texture's
-  // space — tangent (rows T, B = n × T, n) or object (to_object_) — as planes.
+  // space — tangent (rows T, B, n) or object (to_object_) — as planes. The tangent T is
+  // the map's, Pu on the tangent plane (so the frames agree at the vertices); B = n × T,
+  // turned by s for the square patch, whose b runs along Pv. Without a frame, bump_fetch
+  // sends the unperturbed normal +z and the lighting is done in a tangent frame.
   glm::dmat3 to_space[3];
   for (int k = 0; k < 3; ++k) {
-    if (path == core::ShadingPath::BumpObject) {
+    if (path == core::ShadingPath::BumpObject && frame) {
       to_space[k] = to_object_;
     } else {
-      glm::dvec3 T = v[k].tangent - glm::dot(v[k].tangent, n[k]) * n[k];
+      const glm::dvec3 along = frame ? pu : v[k].tangent;
+      glm::dvec3 T = along - glm::dot(along, n[k]) * n[k];
       T = glm::dot(T, T) > 1e-24 ? glm::normalize(T) : core::any_tangent(n[k]);
-      const glm::dvec3 B = glm::cross(n[k], T);
+      const glm::dvec3 B = (path == core::ShadingPath::BumpSquare ? s : 1.0) * glm::cross(n[k], T);
       to_space[k] = glm::transpose(glm::dmat3(T, B, n[k]));  // rows T, B, n
-      ops += Ops{/*add*/ 3 + 2 + 3, /*mul*/ 6 + 6 + 6} + kOpsNormalize3;
+      ops += Ops{/*add*/ 2 + 3 + 3, /*mul*/ 3 + 3 + 6} + kOpsNormalize3;
     }
   }
   const core::Camera& cam = scene_.camera;

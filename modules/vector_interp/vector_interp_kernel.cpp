@@ -89,11 +89,13 @@ void VectorInterpKernel::process_in_space(SpanPacket& p) {
     }
     for (int k = 0; k < light_count_; ++k) {
       float l_w[3];
-      for (int c = 0; c < 3; ++c) l_w[c] = t.lt[k][c].at(dx, dy);
+      for (int c = 0; c < 3; ++c) {
+        l_w[c] = t.lt[k][c].at(dx, dy);
+        l_range_.add_span(l_w[c], t.lt[k][c].ax, p.count, p.w);
+      }
       for (int i = 0; i < p.count; ++i) {
         float l[3];
         for (int c = 0; c < 3; ++c) l[c] = l_w[c] * p.w[i], l_w[c] += t.lt[k][c].ax;
-        l_range_.add(l, 3);
         normalize3(l);
         float h[3] = {l[0] + view[i][0], l[1] + view[i][1], l[2] + view[i][2]};
         normalize3(h);
@@ -106,7 +108,11 @@ void VectorInterpKernel::process_in_space(SpanPacket& p) {
   }
   for (int k = 0; k < light_count_; ++k) {
     float l_w[3], h_w[3];
-    for (int c = 0; c < 3; ++c) l_w[c] = t.lt[k][c].at(dx, dy), h_w[c] = t.ht[k][c].at(dx, dy);
+    for (int c = 0; c < 3; ++c) {
+      l_w[c] = t.lt[k][c].at(dx, dy), h_w[c] = t.ht[k][c].at(dx, dy);
+      l_range_.add_span(l_w[c], t.lt[k][c].ax, p.count, p.w);
+      h_range_.add_span(h_w[c], t.ht[k][c].ax, p.count, p.w);
+    }
     for (int i = 0; i < p.count; ++i) {
       const float w = p.w[i];
       float l[3], h[3];
@@ -114,8 +120,6 @@ void VectorInterpKernel::process_in_space(SpanPacket& p) {
         l[c] = l_w[c] * w, h[c] = h_w[c] * w;
         l_w[c] += t.lt[k][c].ax, h_w[c] += t.ht[k][c].ax;
       }
-      l_range_.add(l, 3);
-      h_range_.add(h, 3);
       normalize3(l);
       normalize3(h);
       for (int c = 0; c < 3; ++c) p.l[k][c][i] = l[c], p.h[k][c][i] = h[c];
@@ -135,7 +139,10 @@ void VectorInterpKernel::process(SpanPacket& p) {
   float l_w[kMaxLights][3], l_step[kMaxLights][3];
   for (const auto& s : lights_)
     if (s.plane >= 0)
-      for (int c = 0; c < 3; ++c) l_w[s.plane][c] = t.l[s.plane][c].at(dx, dy), l_step[s.plane][c] = t.l[s.plane][c].ax;
+      for (int c = 0; c < 3; ++c) {
+        l_w[s.plane][c] = t.l[s.plane][c].at(dx, dy), l_step[s.plane][c] = t.l[s.plane][c].ax;
+        l_range_.add_span(l_w[s.plane][c], l_step[s.plane][c], p.count, p.w);
+      }
 
   for (int i = 0; i < p.count; ++i) {
     const float w = p.w[i];
@@ -148,7 +155,6 @@ void VectorInterpKernel::process(SpanPacket& p) {
       float l[3] = {s.direction[0], s.direction[1], s.direction[2]};
       if (s.plane >= 0) {
         for (int c = 0; c < 3; ++c) l[c] = l_w[s.plane][c] * w, l_w[s.plane][c] += l_step[s.plane][c];
-        l_range_.add(l, 3);
         normalize3(l);
         for (int c = 0; c < 3; ++c) p.l[s.light][c][i] = l[c];
       }
