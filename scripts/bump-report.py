@@ -155,6 +155,20 @@ for surface in SURFACES:
         cells.append(cell)
     print("| %s | %s |" % (surface, " | ".join(cells)))
 
+print("\n### Bump depth, per surface\n")
+print("PSNR (dB) against the golden model: classic / tangent (trilinear, unit L and H).\n")
+print("| surface | depth 0.01 | depth 0.03 | depth 0.1 |")
+print("|---|---|---|---|")
+for surface in SURFACES:
+    row = []
+    for depth in [0.01, 0.03, 0.1]:
+        vals = []
+        for path in ["bump-classic", "bump-tangent"]:
+            s, _ = render(surface, path_sets(path, surface) + ["materials.bumpy.height_scale=%g" % depth])
+            vals.append(db(err(s)[2]))
+        row.append(" / ".join(vals))
+    print("| %s | %s |" % (surface, " | ".join(row)))
+
 print("\n### Bump depth and view angle (quad)\n")
 print("PSNR (dB) against the golden model: classic / tangent / square (k 2). Elevation of the view above the quad.\n")
 depths = [0.01, 0.03, 0.1]

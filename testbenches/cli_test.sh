@@ -100,6 +100,19 @@ sed -e 's#"height_map": "dimples", "height_scale": 0.05, "path": "bump-classic"#
     "$src/golden/bump-sphere/scene.json" >"$tmp/nm.json"
 check render-normal-map 0 "$bin" render "$tmp/nm.json" -o "$tmp/nm.exr" --stats "$tmp/nm-stats.json" --compare-reference
 grep -q '"bump_fetch"' "$tmp/nm-stats.json" && ((passes++)) || { echo "FAIL render-normal-map: no bump_fetch block"; ((failures++)); }
+# A 16-bit grey PNG height map (a 32×32 ramp; stb reads 16-bit PNGs).
+python3 - "$tmp/h16.png" <<'PY'
+import struct, sys, zlib
+w = h = 32
+rows = b"".join(b"\0" + b"".join(struct.pack(">H", (x * 65535) // (w - 1)) for x in range(w)) for _ in range(h))
+chunk = lambda kind, data: struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 16, 0, 0, 0, 0)) + \
+      chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b"")
+open(sys.argv[1], "wb").write(png)
+PY
+sed -e "s#\"textures\": {#\"textures\": {\"h16\": {\"type\": \"image\", \"file\": \"$tmp/h16.png\"},#" \
+    -e 's#"height_map": "dimples"#"height_map": "h16"#' "$src/golden/bump-sphere/scene.json" >"$tmp/h16.json"
+check height-16-bit 0 "$bin" render "$tmp/h16.json" -o "$tmp/h16.exr" --compare-reference
 for path in bump-classic bump-tangent bump-square bump-object; do
   check "bump-$path" 0 "$bin" render "$src/golden/bump-sphere/scene.json" -o "$tmp/$path.exr" --set materials.red.path=$path \
     --set camera.resolution=[48,36]

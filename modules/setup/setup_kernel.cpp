@@ -87,21 +87,13 @@ bool SetupKernel::setup(const Vertex v[3], const core::SnappedTriangle& coverage
   }
   if (t.material->texture >= 0 || t.material->path != core::ShadingPath::Phong)
     for (int c = 0; c < 2; ++c) perspective_plane(t.uv[c], v[0].uv[c], v[1].uv[c], v[2].uv[c]);
-  if (t.material->path != core::ShadingPath::Phong) setup_bump(v, inv_w, pu_, pv_, t, ops);
+  if (t.material->path != core::ShadingPath::Phong) setup_bump(v, inv_w, ps, pu_, pv_, t, ops);
   ops_ += ops;
   return true;
 }
 
-void SetupKernel::setup_bump(const Vertex v[3], const float inv_w[3], glm::dvec3 pu, glm::dvec3 pv,
-                             TriangleSetup& t, Ops& ops) {
-  PlaneSolver<float> ps;
-  ps.dx1 = float(v[1].screen.x - v[0].screen.x);
-  ps.dy1 = float(v[1].screen.y - v[0].screen.y);
-  ps.dx2 = float(v[2].screen.x - v[0].screen.x);
-  ps.dy2 = float(v[2].screen.y - v[0].screen.y);
-  ps.inv_det = 1.0f / (ps.dx1 * ps.dy2 - ps.dx2 * ps.dy1);
-  ps.ox = float(t.x_ref + 0.5 - v[0].screen.x);
-  ps.oy = float(t.y_ref + 0.5 - v[0].screen.y);
+void SetupKernel::setup_bump(const Vertex v[3], const float inv_w[3], const PlaneSolver<float>& ps,
+                             glm::dvec3 pu, glm::dvec3 pv, TriangleSetup& t, Ops& ops) {
   // Values at the vertices, over w, as planes (as setup() does for the others).
   auto planes = [&](Plane out[3], const glm::dvec3 value[3]) {
     for (int c = 0; c < 3; ++c)

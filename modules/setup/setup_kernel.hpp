@@ -60,7 +60,8 @@ class SetupKernel {
   };
   bool setup(const Vertex v[3], const core::SnappedTriangle& coverage, TriangleSetup& out);
   // Bump-mapping planes (docs/bump-mapping.md); Pu, Pv of the whole triangle.
-  void setup_bump(const Vertex v[3], const float inv_w[3], glm::dvec3 pu, glm::dvec3 pv, TriangleSetup& t, Ops& ops);
+  void setup_bump(const Vertex v[3], const float inv_w[3], const PlaneSolver<float>& ps, glm::dvec3 pu,
+                  glm::dvec3 pv, TriangleSetup& t, Ops& ops);
 
   const core::Scene& scene_;
   bool perspective_;
