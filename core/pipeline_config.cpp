@@ -21,6 +21,10 @@ const std::vector<SettingSpec>& pipeline_settings() {
        0, 0, "how the normal is normalized"},
       {"vector_interp.bump_vectors", "unit", {"unit", "affine"}, 0, 0,
        "fetched-normal bump paths: interpolate unit L and H (the paper's) or L and V as affine vectors"},
+      {"texture_fetch.filter", "trilinear", {"nearest", "bilinear", "trilinear", "anisotropic", "ewa"}, 0, 0,
+       "screen-space filter of texture-screen materials"},
+      {"texture_fetch.probes", 4, {}, 1, 16, "anisotropic filter: trilinear probes along the footprint's major axis"},
+      {"texel_project.units", 4, {}, 1, 64, "parallel splat units of texel_project"},
       {"bump_fetch.filter", "trilinear", {"nearest", "bilinear", "trilinear", "anisotropic"}, 0, 0,
        "texture filter of the bump fetch (nearest and bilinear on the nearest mip level)"},
       {"bump_fetch.probes", 4, {}, 1, 16, "anisotropic filter: trilinear probes along the footprint's major axis"},
@@ -34,7 +38,7 @@ const std::vector<SettingSpec>& pipeline_settings() {
         {"setup", {16, 8}},         {"raster", {4, 1}},         {"normal_interp", {2, 1}},
         {"bump_fetch", {24, 1}},    {"bump_perturb", {8, 1}},   {"normal_mux", {1, 1}},
         {"normalize", {12, 1}},     {"vector_interp", {20, 1}}, {"texture_fetch", {8, 1}},
-        {"lighting", {10, 1}},      {"framebuffer", {2, 1}}};
+        {"lighting", {10, 1}},      {"framebuffer", {2, 1}},    {"texel_project", {16, 1}}};
     for (const auto& [block, t] : blocks) {
       table.push_back({std::string(block) + ".latency", t.first, {}, 0, 1000000, "latency in cycles"});
       table.push_back({std::string(block) + ".ii", t.second, {}, 1, 1000000, "cycles per unit of work"});

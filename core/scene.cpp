@@ -24,13 +24,15 @@ const char* to_string(ShadingPath p) {
     case ShadingPath::BumpTangent: return "bump-tangent";
     case ShadingPath::BumpSquare: return "bump-square";
     case ShadingPath::BumpObject: return "bump-object";
+    case ShadingPath::TextureScreen: return "texture-screen";
+    case ShadingPath::TextureObject: return "texture-object";
   }
   return "?";
 }
 
 ShadingPath parse_shading_path(const std::string& name) {
   for (ShadingPath p : {ShadingPath::Phong, ShadingPath::BumpClassic, ShadingPath::BumpTangent, ShadingPath::BumpSquare,
-                        ShadingPath::BumpObject})
+                        ShadingPath::BumpObject, ShadingPath::TextureScreen, ShadingPath::TextureObject})
     if (name == to_string(p)) return p;
   throw std::invalid_argument("unknown shading path " + name);
 }
@@ -251,7 +253,11 @@ void check_camera(JsonReader& r, const Camera& c) {
 // A material's bump-mapping inputs: a bump path needs a height map (or, except the
 // classic path, a precomputed normal map); either must be usable by the texture unit.
 void check_bump_material(JsonReader& r, const Material& m, const std::vector<Texture>& textures) {
-  const bool bump = m.path != ShadingPath::Phong;
+  if ((m.path == ShadingPath::TextureScreen || m.path == ShadingPath::TextureObject) && m.texture < 0)
+    r.fail("path", std::string(to_string(m.path)) + " needs a texture in material \"" + m.name + "\"");
+  if ((m.path == ShadingPath::TextureScreen || m.path == ShadingPath::TextureObject) && m.height_map >= 0)
+    r.fail("height_map", std::string(to_string(m.path)) + " does not bump-map (one path per material)");
+  const bool bump = bump_path(m.path);
   if (!bump && m.normal_map >= 0) r.fail("normal_map", "given, but the path is phong (use a bump-* path)");
   if (m.path == ShadingPath::BumpClassic && m.normal_map >= 0)
     r.fail("normal_map", "the bump-classic path reads the height map, not a normal map");
@@ -372,7 +378,8 @@ Scene load_scene_text(const std::string& text, const std::string& name, const st
       m.normal_map = texture_ref(r, "normal_map", false);
       m.square_k = r.number("square_k", 1.0, kMinLength, kMaxLength);
       m.path = parse_shading_path(r.choice("path", std::string("phong"),
-                                           {"phong", "bump-classic", "bump-tangent", "bump-square", "bump-object"}));
+                                           {"phong", "bump-classic", "bump-tangent", "bump-square", "bump-object",
+                                            "texture-screen", "texture-object"}));
       check_bump_material(r, m, s.textures);
       r.finish();
       material_index[m.name] = static_cast<int>(s.materials.size());

@@ -44,13 +44,21 @@ struct Light {
 // classic hardware of the bump-mapping paper's Fig. 2, and the proposed hardware of
 // Fig. 3 reading a texture of perturbed normals in tangent space (general form (9) or
 // square patch (10)–(11)) or in object space. Parallax and texturing add theirs here.
-enum class ShadingPath { Phong, BumpClassic, BumpTangent, BumpSquare, BumpObject };
+//
+// Texturing paths (object-space texturing paper): the colour texture filtered in the
+// screen plane by the texture unit (texture-screen), or splatted from object space by
+// texel_project (texture-object). A phong material with a texture reads it bilinearly
+// at the finest level.
+enum class ShadingPath { Phong, BumpClassic, BumpTangent, BumpSquare, BumpObject, TextureScreen, TextureObject };
 const char* to_string(ShadingPath p);
 ShadingPath parse_shading_path(const std::string& name);
 // Paths whose normal is fetched from a texture of perturbed normals (Fig. 3), lit in
 // the texture's space (tangent or object) rather than in world space.
 inline bool fetches_normal(ShadingPath p) {
   return p == ShadingPath::BumpTangent || p == ShadingPath::BumpSquare || p == ShadingPath::BumpObject;
+}
+inline bool bump_path(ShadingPath p) {
+  return p == ShadingPath::BumpClassic || fetches_normal(p);
 }
 
 struct Material {

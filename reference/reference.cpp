@@ -9,9 +9,8 @@
 namespace reference {
 
 glm::dvec3 shade(const core::Scene& scene, const core::Material& m, const glm::dvec3& P,
-                 const glm::dvec3& N, const glm::dvec2& uv) {
+                 const glm::dvec3& N, const glm::dvec3& tex) {
   const core::Camera& cam = scene.camera;
-  const glm::dvec3 tex = m.texture >= 0 ? glm::dvec3(scene.textures[m.texture].bilinear(uv)) : glm::dvec3(1);
   const glm::dvec3 V = cam.local_viewer ? glm::normalize(cam.position - P) : -cam.forward();
   glm::dvec3 c = scene.ambient * m.ambient * tex;
   for (const core::Light& light : scene.lights) {
@@ -37,6 +36,44 @@ glm::dvec3 shade(const core::Scene& scene, const core::Material& m, const glm::d
 }
 
 namespace {
+
+// A hash of three integers to [0, 1): the jitter of the footprint's strata.
+double jitter(uint32_t a, uint32_t b, uint32_t c) {
+  uint32_t x = a * 0x9E3779B1u ^ (b + 0x7F4A7C15u) * 0x85EBCA77u ^ (c + 0x165667B1u) * 0xC2B2AE3Du;
+  x ^= x >> 16, x *= 0x7feb352du, x ^= x >> 15, x *= 0x846ca68bu, x ^= x >> 16;
+  return (x >> 8) * (1.0 / 16777216.0);
+}
+
+// The colour texture averaged over the pixel's footprint: 16 × 16 strata of the pixel,
+// one jittered sample in each; each sample's ray meets the triangle's plane (extended
+// beyond its edges), where the barycentric mix of the vertex uvs is perspective-correct;
+// a bilinear read of the finest level there. Samples whose ray misses the plane are
+// left out.
+glm::dvec3 footprint_average(const core::Texture& tex, int px, int py, const glm::dvec3& eye, const glm::dvec3& fwd,
+                             const glm::dvec3& right_step, const glm::dvec3& up_step, const glm::dvec3 P[3],
+                             const glm::dvec3& Ng, const glm::dvec2 uv[3], int width, int height) {
+  constexpr int kStrata = 16;
+  const double Ng2 = glm::dot(Ng, Ng);
+  glm::dvec3 sum(0);
+  int samples = 0;
+  for (int j = 0; j < kStrata; ++j)
+    for (int i = 0; i < kStrata; ++i) {
+      const uint32_t stratum = uint32_t(j * kStrata + i);
+      const double sx = (px + (i + jitter(px, py, stratum)) / kStrata) / width * 2 - 1;
+      const double sy = 1 - (py + (j + jitter(py, px, stratum + 7777)) / kStrata) / height * 2;
+      const glm::dvec3 dir = fwd + right_step * sx + up_step * sy;
+      const double denom = glm::dot(dir, Ng);
+      if (denom == 0) continue;
+      const double t = glm::dot(P[0] - eye, Ng) / denom;
+      if (!(t > 0)) continue;
+      const glm::dvec3 X = eye + dir * t;
+      const double b0 = glm::dot(glm::cross(P[1] - X, P[2] - X), Ng) / Ng2;
+      const double b1 = glm::dot(glm::cross(P[2] - X, P[0] - X), Ng) / Ng2;
+      sum += glm::dvec3(tex.bilinear(b0 * uv[0] + b1 * uv[1] + (1 - b0 - b1) * uv[2]));
+      ++samples;
+    }
+  return samples > 0 ? sum / double(samples) : glm::dvec3(0);
+}
 
 // ∂h/∂u and ∂h/∂v of the bilinearly interpolated height map (first channel, finest
 // level) at uv: the exact derivatives of the surface that core::Texture::bilinear reads.
@@ -132,7 +169,7 @@ Image render(const core::Scene& scene) {
       // (zero where the uv triangle has no area).
       glm::dvec3 Pu(0), Pv(0);
       double sign = 1;  // −1: uv mirrored against the normals
-      if (material.path != core::ShadingPath::Phong) {
+      if (core::bump_path(material.path)) {
         const glm::dvec2 t1 = mesh.uvs[tri.y] - mesh.uvs[tri.x], t2 = mesh.uvs[tri.z] - mesh.uvs[tri.x];
         const double det = t1.x * t2.y - t2.x * t1.y;
         if (det != 0) Pu = ((P[1] - P[0]) * t2.y - (P[2] - P[0]) * t1.y) / det, Pv = ((P[2] - P[0]) * t1.x - (P[1] - P[0]) * t2.x) / det;
@@ -180,12 +217,20 @@ Image render(const core::Scene& scene) {
             const glm::dvec2 uv = b0 * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
             img.depth[i] = t;
             img.alpha[i] = 1;
-            if (material.path == core::ShadingPath::Phong) {
-              img.normal[i] = N;
-              img.color[i] = shade(scene, material, X, N, uv);
-            } else {
+            glm::dvec3 tex(1);
+            if (material.path == core::ShadingPath::TextureScreen || material.path == core::ShadingPath::TextureObject) {
+              const glm::dvec2 uvs[3] = {mesh.uvs[tri.x], mesh.uvs[tri.y], mesh.uvs[tri.z]};
+              tex = footprint_average(scene.textures[material.texture], px, py, eye, fwd, right * (tan_half * aspect),
+                                      up * tan_half, P, Ng, uvs, img.width, img.height);
+            } else if (material.texture >= 0) {
+              tex = glm::dvec3(scene.textures[material.texture].bilinear(uv));
+            }
+            if (core::bump_path(material.path)) {
               const glm::dvec3 bumped = bump_normal(scene, object, material, N, uv, Pu, Pv, sign, img.normal[i]);
-              img.color[i] = shade(scene, material, X, bumped, uv);
+              img.color[i] = shade(scene, material, X, bumped, tex);
+            } else {
+              img.normal[i] = N;
+              img.color[i] = shade(scene, material, X, N, tex);
             }
           }
         }

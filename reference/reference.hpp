@@ -9,6 +9,9 @@
 //    plane; the barycentric coordinates of that point are exactly the
 //    perspective-correct ones;
 //  * the normal is the barycentric mix of the vertex normals, normalized exactly;
+//  * textures: one bilinear read of the finest level at the pixel's uv (phong); the
+//    average of the texture over the pixel's footprint, 16×16 stratified samples, for
+//    the texturing paths (texture-screen, texture-object);
 //  * bump-mapped materials: Blinn's perturbed normal of the exact height field, with
 //    the true per-pixel tangent frame (docs/bump-mapping.md);
 //  * Blinn-Phong with every light (docs/golden-model.md).
@@ -33,9 +36,10 @@ struct Image {
   size_t index(int x, int y) const { return size_t(y) * width + x; }
 };
 
-// Blinn-Phong at world point P with unit normal N and texture coordinates uv.
+// Blinn-Phong at world point P with unit normal N; `tex` is the colour texture's value
+// there (1 without a texture), which modulates the ambient and diffuse terms.
 glm::dvec3 shade(const core::Scene& scene, const core::Material& material, const glm::dvec3& P,
-                 const glm::dvec3& N, const glm::dvec2& uv);
+                 const glm::dvec3& N, const glm::dvec3& tex);
 
 Image render(const core::Scene& scene);
 

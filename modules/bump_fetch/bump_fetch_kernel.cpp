@@ -9,7 +9,7 @@ namespace modules {
 
 bool BumpFetchKernel::needed(const core::Scene& scene) {
   for (const auto& o : scene.objects)
-    if (scene.materials[size_t(o.material)].path != core::ShadingPath::Phong) return true;
+    if (core::bump_path(scene.materials[size_t(o.material)].path)) return true;
   return false;
 }
 
@@ -21,7 +21,7 @@ BumpFetchKernel::BumpFetchKernel(const core::Scene& scene, const Options& option
     const core::Object& object = scene.objects[o];
     const core::Material& m = scene.materials[size_t(object.material)];
     const Map* map = nullptr;
-    if (m.path != core::ShadingPath::Phong) {
+    if (core::bump_path(m.path)) {
       // Maps of the height map alone are shared by the material's objects.
       const bool per_object = m.normal_map < 0 && (m.path == core::ShadingPath::BumpTangent ||
                                                    m.path == core::ShadingPath::BumpObject);
@@ -73,6 +73,7 @@ const BumpFetchKernel::Map& BumpFetchKernel::build(const core::Scene& scene, con
 void BumpFetchKernel::process(SpanPacket& p) {
   const TriangleSetup& t = *p.tri;
   if (!t.bump_frame) {  // no tangent frame: the unperturbed normal (+z), no derivatives
+    last_cycles_ = uint64_t(p.count);
     for (int i = 0; i < p.count; ++i) p.bump[0][i] = 0, p.bump[1][i] = 0, p.bump[2][i] = 1;
     if (capture_)
       for (int c = 0; c < 3; ++c)
@@ -80,25 +81,10 @@ void BumpFetchKernel::process(SpanPacket& p) {
     return;
   }
   const Map& map = *map_of_object_[size_t(t.object)];
-  const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
-  float u_w = t.uv[0].at(dx, dy), v_w = t.uv[1].at(dx, dy);
-  uv_range_.add_span(u_w, t.uv[0].ax, p.count, p.w);
-  uv_range_.add_span(v_w, t.uv[1].ax, p.count, p.w);
-  for (int i = 0; i < p.count; ++i) {
-    // uv = (uv/w)·w; its derivative along x is (∂(u/w)/∂x − u·∂(1/w)/∂x)·w.
-    const float w = p.w[i];
-    const float u = u_w * w, v = v_w * w;
-    const float dudx = (t.uv[0].ax - u * t.inv_w.ax) * w, dvdx = (t.uv[1].ax - v * t.inv_w.ax) * w;
-    const float dudy = (t.uv[0].ay - u * t.inv_w.ay) * w, dvdy = (t.uv[1].ay - v * t.inv_w.ay) * w;
-    u_w += t.uv[0].ax, v_w += t.uv[1].ax;
-    float out[3];
-    sampler_.sample(map.mip, u, v, dudx, dvdx, dudy, dvdy, out, ops_);
-    for (int c = 0; c < 3; ++c) p.bump[c][i] = out[c];
-    if (capture_) captured_[0][i] = u, captured_[1][i] = v, captured_[2][i] = sampler_.last_lod();
-  }
+  const uint64_t cycles_before = sampler_.cycles();
+  sample_span(t, p, map.mip, sampler_, p.bump, ops_, uv_range_, capture_ ? captured_ : nullptr);
+  last_cycles_ = sampler_.cycles() - cycles_before;
   for (int c = 0; c < 3; ++c) fetched_range_.add(p.bump[c], p.count);
-  ops_ += kOpsPerPixel * uint64_t(p.count);
-  if (p.count > 0) ops_ += kOpsPerSpan;
 }
 
 }  // namespace modules

@@ -34,8 +34,8 @@ class BumpFetchKernel {
 
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
-  uint64_t work(const SpanPacket& p) const { return uint64_t(p.count) * uint64_t(sampler_.probes_per_pixel()); }
-  bool bypass(const SpanPacket& p) const { return p.tri->material->path == core::ShadingPath::Phong; }
+  uint64_t work(const SpanPacket&) const { return last_cycles_; }  // four texels a cycle
+  bool bypass(const SpanPacket& p) const { return !core::bump_path(p.tri->material->path); }
 
   double precompute_seconds() const { return precompute_s_; }
   Ranges ranges() const { return {{"uv", uv_range_}, {"fetched", fetched_range_}}; }
@@ -47,11 +47,6 @@ class BumpFetchKernel {
     for (int c = 0; c < 3; ++c) out[c] = captured_[c][i];
     for (int c = 0; c < 3; ++c) out[3 + c] = p.bump[c][i];
   }
-
-  // Per pixel outside the filter: uv (2 mul, 2 add) and its four derivatives
-  // ((∂(u/w) − u ∂(1/w))·w: 2 mul, 1 add each).
-  static constexpr Ops kOpsPerPixel{/*add*/ 6, /*mul*/ 10};
-  static constexpr Ops kOpsPerSpan{/*add*/ 4, /*mul*/ 4};  // two plane seeds
 
  private:
   struct Map {
@@ -67,6 +62,7 @@ class BumpFetchKernel {
   std::vector<std::unique_ptr<Map>> maps_;
   std::vector<const Map*> map_of_object_;  // by object index; nullptr: no bump map
   double precompute_s_ = 0;
+  uint64_t last_cycles_ = 0;
   Ops ops_;
   ValueRange uv_range_, fetched_range_;
   bool capture_ = false;

@@ -25,6 +25,7 @@ inline const core::Material kDefaultMaterial{};
 
 struct TriangleSetup {
   uint32_t id = 0;                     // running number in the frame
+  uint32_t source = 0;                 // the scene triangle it comes from (all objects' triangles, in order)
   int object = 0;
   const core::Material* material = &kDefaultMaterial;
   core::SnappedTriangle coverage;      // the shared coverage convention
@@ -69,7 +70,8 @@ struct SpanPacket {
   float h[kMaxLights][3][kSpanMax];  // vector_interp: unit H (point lights or local viewer)
   float bump[3][kSpanMax]; // bump_fetch: the filtered normal N' (fetched paths) or Fu, Fv (classic)
   float tex[3][kSpanMax]; // texture_fetch: colour texture
-  float rgb[3][kSpanMax]; // lighting
+  float rgb[3][kSpanMax]; // lighting (texture-object: the ambient and diffuse factor D)
+  float spec[3][kSpanMax]; // lighting, texture-object only: the specular term S (C = tex ⊙ D + S later)
 };
 
 }  // namespace modules

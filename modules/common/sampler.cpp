@@ -11,6 +11,7 @@ Filter parse_filter(const std::string& name) {
   if (name == "bilinear") return Filter::Bilinear;
   if (name == "trilinear") return Filter::Trilinear;
   if (name == "anisotropic") return Filter::Anisotropic;
+  if (name == "ewa") return Filter::Ewa;
   throw std::invalid_argument("unknown filter " + name);
 }
 
@@ -98,9 +99,66 @@ void Sampler::trilinear(const MipMap& map, float lod, float u, float v, float ou
   ops += kOpsLevelBlend;
 }
 
+void Sampler::ewa(const MipMap& map, float u, float v, float ax, float ay, float bx, float by, float out[3],
+                  Ops& ops) {
+  // The footprint's axes in texel coordinates (s right, r down: r runs against v).
+  ay = -ay, by = -by;
+  float a2 = ax * ax + ay * ay, b2 = bx * bx + by * by;
+  if (a2 < b2) std::swap(ax, bx), std::swap(ay, by), std::swap(a2, b2);  // a: the major axis
+  // At most 16 : 1, by widening the minor axis (else a long ellipse reads a very fine level).
+  constexpr float kMaxEccentricity = 16;
+  if (b2 * kMaxEccentricity * kMaxEccentricity < a2) {
+    const float grow = std::sqrt(a2 / b2) / kMaxEccentricity;
+    if (std::isfinite(grow)) bx *= grow, by *= grow, b2 *= grow * grow;
+    else bx = -ay / kMaxEccentricity, by = ax / kMaxEccentricity, b2 = a2 / (kMaxEccentricity * kMaxEccentricity);
+  }
+  const int last = int(map.levels.size()) - 1;
+  const float minor_lod = b2 > 1.0f ? 0.5f * std::log2(b2) : 0.0f;
+  const int level = std::isfinite(minor_lod) ? std::min(int(minor_lod), last) : last;
+  lod_ = float(level);
+  const core::Texture& t = *map.levels[size_t(level)];
+  const float scale = 1.0f / float(1 << level);
+  ax *= scale, ay *= scale, bx *= scale, by *= scale;
+  // The ellipse A s² + B s r + C r² < F (Heckbert), the +1 a unit reconstruction filter.
+  float A = ay * ay + by * by + 1, B = -2 * (ax * ay + bx * by), C = ax * ax + bx * bx + 1;
+  const float F = A * C - B * B * 0.25f;
+  A /= F, B /= F, C /= F;
+  const float det = A * C - B * B * 0.25f;  // the bounding box of the ellipse
+  const float half_s = std::sqrt(C / det), half_r = std::sqrt(A / det);
+  float s0, r0;
+  texel_coordinates(t, u, v, s0, r0);
+  ops += Ops{/*add*/ 12, /*mul*/ 24, /*div*/ 4, /*sqrt*/ 2, 0, /*lut*/ 1};
+  float sum[3] = {0, 0, 0}, weights = 0;
+  const int x_lo = int(std::ceil(s0 - half_s)), x_hi = int(std::floor(s0 + half_s));
+  const int y_lo = int(std::ceil(r0 - half_r)), y_hi = int(std::floor(r0 + half_r));
+  for (int y = y_lo; y <= y_hi; ++y)
+    for (int x = x_lo; x <= x_hi; ++x) {
+      const float ds = float(x) - s0, dr = float(y) - r0;
+      const float r2 = A * ds * ds + B * ds * dr + C * dr * dr;
+      ops += Ops{/*add*/ 4, /*mul*/ 5};
+      if (r2 >= 1) continue;
+      const float w = std::exp(-2.0f * r2);  // a Gaussian of the elliptical radius (one table look-up)
+      int tx = x % t.width, ty = y % t.height;
+      if (t.wrap == core::Wrap::Repeat) tx += tx < 0 ? t.width : 0, ty += ty < 0 ? t.height : 0;
+      else tx = std::clamp(x, 0, t.width - 1), ty = std::clamp(y, 0, t.height - 1);
+      touch(level, tx, ty);
+      const glm::vec4& c = t.texels[size_t(ty) * size_t(t.width) + size_t(tx)];
+      for (int k = 0; k < 3; ++k) sum[k] += w * c[k];
+      weights += w;
+      ops += Ops{/*add*/ 4, /*mul*/ 3, 0, 0, 0, /*lut*/ 1, /*fetch*/ 1};
+    }
+  if (weights > 0) {
+    for (int k = 0; k < 3; ++k) out[k] = sum[k] / weights;
+    ops += Ops{0, 0, /*div*/ 3};
+  } else {  // a footprint smaller than the texel grid's gaps (cannot happen with the +1): bilinear
+    bilinear(t, level, u, v, out, ops);
+  }
+}
+
 void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx, float dudy, float dvdy,
                      float out[3], Ops& ops) {
   line_count_ = 0;
+  const uint64_t fetches_before = ops.fetch;
   const core::Texture& base = *map.levels.front();
   const float W = float(base.width), H = float(base.height);
   // The footprint's axes in texels of the finest level (4 mul), their squared lengths
@@ -113,7 +171,9 @@ void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx
     const float l = squared > 1.0f ? 0.5f * std::log2(squared) : 0.0f;
     return std::isfinite(l) ? std::min(l, last) : last;  // clamped to the chain
   };
-  if (filter_ == Filter::Anisotropic) {
+  if (filter_ == Filter::Ewa) {
+    ewa(map, u, v, ax, ay, bx, by, out, ops);
+  } else if (filter_ == Filter::Anisotropic) {
     // Probes along the major axis, spaced by its length over N; the level of that
     // spacing, but never finer than the minor axis (1 mul for the N², 2 mul per step).
     const bool a_major = a2 >= b2;
@@ -144,6 +204,32 @@ void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx
     }
   }
   ops.line += uint64_t(line_count_);
+  cycles_ += std::max<uint64_t>(1, (ops.fetch - fetches_before + 3) / 4);
+}
+
+}  // namespace modules
+
+namespace modules {
+
+void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map, Sampler& sampler,
+                 float out[3][kSpanMax], Ops& ops, ValueRange& uv_range, float (*uv_lod)[kSpanMax]) {
+  const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
+  float u_w = t.uv[0].at(dx, dy), v_w = t.uv[1].at(dx, dy);
+  uv_range.add_span(u_w, t.uv[0].ax, p.count, p.w);
+  uv_range.add_span(v_w, t.uv[1].ax, p.count, p.w);
+  for (int i = 0; i < p.count; ++i) {
+    const float w = p.w[i];
+    const float u = u_w * w, v = v_w * w;
+    const float dudx = (t.uv[0].ax - u * t.inv_w.ax) * w, dvdx = (t.uv[1].ax - v * t.inv_w.ax) * w;
+    const float dudy = (t.uv[0].ay - u * t.inv_w.ay) * w, dvdy = (t.uv[1].ay - v * t.inv_w.ay) * w;
+    u_w += t.uv[0].ax, v_w += t.uv[1].ax;
+    float value[3];
+    sampler.sample(map, u, v, dudx, dvdx, dudy, dvdy, value, ops);
+    for (int c = 0; c < 3; ++c) out[c][i] = value[c];
+    if (uv_lod) uv_lod[0][i] = u, uv_lod[1][i] = v, uv_lod[2][i] = sampler.last_lod();
+  }
+  ops += kOpsSpanUvPerPixel * uint64_t(p.count);
+  if (p.count > 0) ops += kOpsSpanUvPerSpan;
 }
 
 }  // namespace modules

@@ -7,6 +7,10 @@
 //   trilinear    bilinear on the two levels around the LOD, blended
 //   anisotropic  N trilinear probes spread along the footprint's major axis, averaged,
 //                at the level of the footprint's width over N (not below its minor axis)
+//   ewa          Heckbert's elliptical weighted average: every texel inside the
+//                footprint's ellipse (eccentricity capped at 16) on the level of its
+//                minor axis, weighted by a Gaussian of its elliptical radius — the
+//                quality anchor of the screen-space filters
 //
 // with the addressing convention of core/texture.hpp (texel centres, wrap modes). It
 // counts what the hardware spends: texel fetches, and the memory lines they touch —
@@ -18,10 +22,12 @@
 
 #include "core/texture.hpp"
 #include "modules/common/ops.hpp"
+#include "modules/common/packet.hpp"
+#include "modules/common/range.hpp"
 
 namespace modules {
 
-enum class Filter { Nearest, Bilinear, Trilinear, Anisotropic };
+enum class Filter { Nearest, Bilinear, Trilinear, Anisotropic, Ewa };
 Filter parse_filter(const std::string& name);
 
 // A texture and its mip levels, finest first.
@@ -38,8 +44,9 @@ class Sampler {
   void sample(const MipMap& map, float u, float v, float dudx, float dvdx, float dudy, float dvdy, float out[3],
               Ops& ops);
 
-  // Bilinear probes per pixel at most: the texture unit's work in cycles at II 1.
-  int probes_per_pixel() const { return filter_ == Filter::Trilinear ? 2 : filter_ == Filter::Anisotropic ? 2 * probes_ : 1; }
+  // The texture unit's work so far, in cycles at II 1: it reads four texels a cycle, and
+  // a pixel takes at least one cycle.
+  uint64_t cycles() const { return cycles_; }
   Filter filter() const { return filter_; }
 
   // The LOD of the last sample (level, fraction included), for the waveforms.
@@ -49,6 +56,7 @@ class Sampler {
   void bilinear(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops);
   void nearest(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops);
   void trilinear(const MipMap& map, float lod, float u, float v, float out[3], Ops& ops);
+  void ewa(const MipMap& map, float u, float v, float ax, float ay, float bx, float by, float out[3], Ops& ops);
   void touch(int level, int x, int y);
 
   Filter filter_;
@@ -56,6 +64,18 @@ class Sampler {
   float lod_ = 0;
   uint64_t lines_[256];  // the lines touched by the current pixel
   int line_count_ = 0;
+  uint64_t cycles_ = 0;
 };
+
+// The texture unit on a span: per pixel, uv = (uv/w)·w from the triangle's uv planes,
+// its derivatives along x and y, ((∂(u/w) − u ∂(1/w)) · w), and the filtered value into
+// out[0..2][i]. `lod` (if not null) receives each pixel's LOD. Shared by the bump fetch
+// and the colour texture's fetch.
+void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map, Sampler& sampler,
+                 float out[3][kSpanMax], Ops& ops, ValueRange& uv_range, float (*uv_lod)[kSpanMax] = nullptr);
+// Per pixel outside the filter: uv (2 mul, 2 add) and its four derivatives (2 mul, 1 add
+// each); per span, two plane seeds.
+constexpr Ops kOpsSpanUvPerPixel{/*add*/ 6, /*mul*/ 10};
+constexpr Ops kOpsSpanUvPerSpan{/*add*/ 4, /*mul*/ 4};
 
 }  // namespace modules

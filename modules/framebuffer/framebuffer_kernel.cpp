@@ -4,7 +4,12 @@
 
 namespace modules {
 
-FramebufferKernel::FramebufferKernel(const core::Scene& scene) : frame_(scene.camera.width, scene.camera.height) {
+FramebufferKernel::FramebufferKernel(const core::Scene& scene, bool deferred)
+    : frame_(scene.camera.width, scene.camera.height) {
+  if (deferred) {
+    visible_.assign(frame_.pixel_count(), 0);
+    specular_.assign(frame_.pixel_count() * 3, 0.0f);
+  }
   const float background[3] = {float(scene.background.r), float(scene.background.g), float(scene.background.b)};
   const char* names[8] = {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z"};
   const float fill[8] = {background[0], background[1], background[2], 0.0f,
@@ -25,6 +30,14 @@ void FramebufferKernel::process(SpanPacket& p) {
     layer_[5][at] = p.n[0][i];
     layer_[6][at] = p.n[1][i];
     layer_[7][at] = p.n[2][i];
+  }
+  if (visible_.empty()) return;
+  const bool splatted = p.tri->material->path == core::ShadingPath::TextureObject;
+  for (int i = 0; i < p.count; ++i) {
+    const size_t at = base + i;
+    visible_[at] = splatted ? p.tri->source + 1 : 0;  // a nearer surface hides it
+    if (splatted)
+      for (int c = 0; c < 3; ++c) specular_[at * 3 + c] = p.spec[c][i];
   }
 }
 

@@ -12,7 +12,9 @@ namespace modules {
 
 class FramebufferKernel {
  public:
-  explicit FramebufferKernel(const core::Scene& scene);
+  // deferred: keep, per pixel, the visible scene triangle and the specular term of
+  // texture-object materials, for texel_project's second pass.
+  explicit FramebufferKernel(const core::Scene& scene, bool deferred = false);
 
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
@@ -27,8 +29,14 @@ class FramebufferKernel {
   }
 
   core::Frame& frame() { return frame_; }
+  // Deferred buffers (empty unless deferred): per pixel, 1 + the scene triangle of a
+  // texture-object material seen there (0: none), and its specular term (3 floats).
+  const std::vector<uint32_t>& visible_source() const { return visible_; }
+  const std::vector<float>& specular() const { return specular_; }
 
  private:
+  std::vector<uint32_t> visible_;
+  std::vector<float> specular_;
   core::Frame frame_;
   float* layer_[8];  // R, G, B, A, Z, N.X, N.Y, N.Z
   Ops ops_;           // stores only: no arithmetic

@@ -40,7 +40,10 @@ Ops LightingKernel::ops_per_span() const {
 
 void LightingKernel::process(SpanPacket& p) {
   const core::Material& m = *p.tri->material;
-  const bool textured = m.texture >= 0;
+  // texture-object: the texture is splatted after the frame (texel_project), so the
+  // ambient and diffuse factor D goes to rgb and the specular term S apart.
+  const bool deferred = m.path == core::ShadingPath::TextureObject;
+  const bool textured = m.texture >= 0 && !deferred;
   const float shininess = float(m.shininess);
   float ambient[3], kd[kMaxLights][3], ks[kMaxLights][3];
   for (int c = 0; c < 3; ++c) ambient[c] = ambient_[c] * float(m.ambient[c]);
@@ -54,6 +57,9 @@ void LightingKernel::process(SpanPacket& p) {
   const int count = p.count;
   for (int c = 0; c < 3; ++c)
     for (int i = 0; i < count; ++i) p.rgb[c][i] = textured ? ambient[c] * p.tex[c][i] : ambient[c];
+  if (deferred)
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < count; ++i) p.spec[c][i] = 0;
   float n_dot_l[kSpanMax], n_dot_h[kSpanMax];
   if (capture_ && lights_.empty())  // no light: nothing to show, not a stale value
     for (int i = 0; i < count; ++i) captured_[0][i] = captured_[1][i] = 0;
@@ -87,6 +93,14 @@ void LightingKernel::process(SpanPacket& p) {
     // call whose result the select would discard.
     for (int i = 0; i < count; ++i)
       n_dot_h[i] = n_dot_l[i] > 0 && n_dot_h[i] > 0 ? std::pow(n_dot_h[i], shininess) : 0.0f;
+    if (deferred) {
+      for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < count; ++i) {
+          p.rgb[c][i] += kd[k][c] * (n_dot_l[i] > 0 ? n_dot_l[i] : 0.0f);
+          p.spec[c][i] += ks[k][c] * n_dot_h[i];
+        }
+      continue;
+    }
     for (int c = 0; c < 3; ++c)
       for (int i = 0; i < count; ++i) {
         const float diffuse = n_dot_l[i] > 0 ? n_dot_l[i] : 0.0f;

@@ -40,7 +40,7 @@ void NormalizeKernel::process(SpanPacket& p) {
     }
   // The forward-difference radicand follows a normal that steps by ΔN_H along the span;
   // a bump-mapped normal does not, so bump packets are normalized exactly instead.
-  const NormalizeMode mode = mode_ == NormalizeMode::ForwardDifference && t.material->path != core::ShadingPath::Phong
+  const NormalizeMode mode = mode_ == NormalizeMode::ForwardDifference && core::bump_path(t.material->path)
                                  ? NormalizeMode::Exact
                                  : mode_;
   normalize_span(p.n[0], p.n[1], p.n[2], p.count, dh, t.c, mode);

@@ -10,13 +10,14 @@
 #include "core/input_error.hpp"
 #include "modules/raster/raster.hpp"
 #include "modules/setup/setup.hpp"
+#include "modules/texel_project/texel_project.hpp"
 
 namespace modules {
 
 const std::vector<std::string>& block_names() {
   static const std::vector<std::string> names = {
       "setup",     "raster",        "normal_interp", "bump_fetch", "bump_perturb", "normal_mux",
-      "normalize", "vector_interp", "texture_fetch", "lighting",   "framebuffer"};
+      "normalize", "vector_interp", "texture_fetch", "lighting",   "framebuffer", "texel_project"};
   return names;
 }
 
@@ -30,6 +31,9 @@ Options read_options(const core::Scene& scene) {
   o.normalize = parse_normalize_mode(scene.pipeline.string("normalize.mode"));
   o.clock_mhz = scene.pipeline.number("clock_mhz");
   o.affine_bump_vectors = scene.pipeline.string("vector_interp.bump_vectors") == "affine";
+  o.texture.filter = parse_filter(scene.pipeline.string("texture_fetch.filter"));
+  o.texture.probes = scene.pipeline.integer("texture_fetch.probes");
+  o.splat_units = scene.pipeline.integer("texel_project.units");
   o.bump.filter = parse_filter(scene.pipeline.string("bump_fetch.filter"));
   o.bump.probes = scene.pipeline.integer("bump_fetch.probes");
   o.bump.renormalize_mips = scene.pipeline.boolean("bump_fetch.renormalize_mips");
@@ -44,12 +48,13 @@ Kernels::Kernels(const core::Scene& scene, const Options& o)
       raster(scene.camera.width, scene.camera.height),
       normalize(o.normalize),
       lighting(scene),
-      framebuffer(scene) {
+      framebuffer(scene, TexelProjectKernel::needed(scene)) {
+  if (TexelProjectKernel::needed(scene)) texel_project.emplace(scene, o.splat_units);
   if (BumpFetchKernel::needed(scene)) bump_fetch.emplace(scene, o.bump);
   if (BumpPerturbKernel::needed(scene)) bump_perturb.emplace(o.perspective);
   if (NormalMuxKernel::needed(scene)) normal_mux.emplace();
   if (VectorInterpKernel::needed(scene)) vector_interp.emplace(scene, setup.point_lights(), o.affine_bump_vectors);
-  if (TextureFetchKernel::needed(scene)) texture_fetch.emplace(scene);
+  if (TextureFetchKernel::needed(scene)) texture_fetch.emplace(scene, o.texture);
 }
 
 namespace {
@@ -65,6 +70,8 @@ void fill_counts(RenderResult& r, const Kernels& k) {
     if (b.name == "bump_fetch") b.ranges = k.bump_fetch->ranges();
     if (b.name == "bump_perturb") b.ranges = k.bump_perturb->ranges();
     if (b.name == "vector_interp") b.ranges = k.vector_interp->ranges();
+    if (b.name == "texel_project") b.details = k.texel_project->stats();
+    if (b.name == "texture_fetch") b.details = {{"lod_computations", k.texture_fetch->lod_computations()}};
   }
 }
 
@@ -101,6 +108,11 @@ class Top : public sc_core::sc_module {
     framebuffer_ = stage("framebuffer", k.framebuffer, o);
     bind_last(framebuffer_->in);
     blocks_.push_back(framebuffer_.get());
+    if (k.texel_project) {
+      texel_project_ = std::make_unique<TexelProject>("texel_project", *k.texel_project, k.framebuffer, *setup_,
+                                                      *framebuffer_, o.timing.at("texel_project"), period_);
+      blocks_.push_back(texel_project_.get());
+    }
 
     region_ = inspect.region;
     if (!inspect.region_given) region_.x0 = 0, region_.y0 = 0, region_.x1 = width - 1, region_.y1 = height - 1;
@@ -156,6 +168,7 @@ class Top : public sc_core::sc_module {
   std::unique_ptr<Stage<TextureFetchKernel>> texture_fetch_;
   std::unique_ptr<Stage<LightingKernel>> lighting_;
   std::unique_ptr<Stage<FramebufferKernel>> framebuffer_;
+  std::unique_ptr<TexelProject> texel_project_;
   std::vector<BlockInfo*> blocks_;
   TraceRegion region_;
   const TraceRegion* filter_ = nullptr;
@@ -186,6 +199,7 @@ RenderResult render_loop(const core::Scene& scene) {
       r.pixels_shaded += uint64_t(p.count);
     });
   });
+  if (k.texel_project) k.texel_project->run(k.framebuffer);
   r.wall_s = seconds_since(start);
   auto report = [&](const char* name, const Ops& ops) {
     BlockReport b;
@@ -205,6 +219,7 @@ RenderResult render_loop(const core::Scene& scene) {
   if (k.texture_fetch) report("texture_fetch", k.texture_fetch->ops());
   report("lighting", k.lighting.ops());
   report("framebuffer", k.framebuffer.ops());
+  if (k.texel_project) report("texel_project", k.texel_project->ops());
   fill_counts(r, k);
   r.frame = std::move(k.framebuffer.frame());
   return r;
@@ -241,7 +256,8 @@ RenderResult render_systemc(const core::Scene& scene, const Inspect& inspect) {
                double(top.tracer()->first_cycle()) * ps, double(top.tracer()->last_cycle()) * ps);
   }
   if (!inspect.timeline.empty()) top.timeline_slices().write(inspect.timeline, top.names(), o.clock_mhz);
-  r.pixels_shaded = r.blocks.back().stats.pixels;
+  for (const auto& b : r.blocks)
+    if (b.name == "framebuffer") r.pixels_shaded = b.stats.pixels;
   r.frame = std::move(k.framebuffer.frame());
   return r;
 }
@@ -308,6 +324,7 @@ nlohmann::json RenderResult::stats_json() const {
                          {"ops", b.stats.ops.to_json()}};
     bj["utilization"] = frame_cycles > 0 ? double(b.stats.busy_cycles) / double(frame_cycles) : 0.0;
     if (!b.ranges.empty()) bj["ranges"] = to_json(b.ranges);
+    if (!b.details.is_null()) bj["details"] = b.details;
     j["blocks"][b.name] = bj;
   }
   if (bin_cycles > 0 && frame_cycles > 0) {

@@ -30,6 +30,7 @@
 #include "modules/normalize/normalize_kernel.hpp"
 #include "modules/raster/raster_kernel.hpp"
 #include "modules/setup/setup_kernel.hpp"
+#include "modules/texel_project/texel_project_kernel.hpp"
 #include "modules/texture_fetch/texture_fetch_kernel.hpp"
 #include "modules/vector_interp/vector_interp_kernel.hpp"
 
@@ -43,6 +44,8 @@ struct Options {
   NormalizeMode normalize = NormalizeMode::Exact;
   double clock_mhz = 500;
   BumpFetchKernel::Options bump;
+  TextureFetchKernel::Options texture;
+  int splat_units = 4;  // texel_project.units
   bool affine_bump_vectors = false;  // vector_interp.bump_vectors
   std::map<std::string, Timing> timing;  // by block name
 };
@@ -64,6 +67,7 @@ struct Kernels {
   std::optional<TextureFetchKernel> texture_fetch;  // only if a material has a texture
   LightingKernel lighting;
   FramebufferKernel framebuffer;
+  std::optional<TexelProjectKernel> texel_project;  // only for texture-object materials
 };
 
 struct BlockReport {
@@ -73,6 +77,7 @@ struct BlockReport {
   uint64_t free_cycle = 0;  // when it finished its last work
   std::vector<uint64_t> busy_per_bin;  // busy cycles per Inspect::bin_cycles
   Ranges ranges;                       // of the block's datapaths (docs/pipeline.md)
+  nlohmann::json details;              // block-specific figures (texel_project)
 };
 
 // What to record for inspection (docs/inspecting.md).

@@ -38,6 +38,8 @@ void Setup::run() {
     if (quantum_.need_sync()) quantum_.sync();
   });
   quantum_.sync();
+  finished_ = true;
+  done.notify(sc_core::SC_ZERO_TIME);
   if (tracer_) tracer_->source_done();
 }
 

@@ -13,6 +13,10 @@ namespace modules {
 class Setup : public sc_core::sc_module, public BlockInfo {
  public:
   tlm_utils::simple_initiator_socket<Setup> out;
+  // The frame's last triangle has gone through the pipeline (every transaction is a
+  // blocking call, so the blocks downstream are done with it too).
+  sc_core::sc_event done;
+  bool finished() const { return finished_; }
 
   SC_HAS_PROCESS(Setup);
   Setup(sc_core::sc_module_name name, SetupKernel& kernel, Timing timing, sc_core::sc_time period);
@@ -30,6 +34,7 @@ class Setup : public sc_core::sc_module, public BlockInfo {
   sc_core::sc_time period_;
   tlm_utils::tlm_quantumkeeper quantum_;
   BlockStats stats_;
+  bool finished_ = false;
 };
 
 }  // namespace modules

@@ -87,7 +87,7 @@ bool SetupKernel::setup(const Vertex v[3], const core::SnappedTriangle& coverage
   }
   if (t.material->texture >= 0 || t.material->path != core::ShadingPath::Phong)
     for (int c = 0; c < 2; ++c) perspective_plane(t.uv[c], v[0].uv[c], v[1].uv[c], v[2].uv[c]);
-  if (t.material->path != core::ShadingPath::Phong) setup_bump(v, inv_w, ps, pu_, pv_, t, ops);
+  if (core::bump_path(t.material->path)) setup_bump(v, inv_w, ps, pu_, pv_, t, ops);
   ops_ += ops;
   return true;
 }

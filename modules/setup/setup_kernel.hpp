@@ -79,17 +79,18 @@ class SetupKernel {
 template <class Emit>
 void SetupKernel::run(Emit&& emit) {
   const int width = scene_.camera.width, height = scene_.camera.height;
-  uint32_t id = 0;
+  uint32_t id = 0, source = 0;
   for (size_t o = 0; o < scene_.objects.size(); ++o) {
     const core::Object& object = scene_.objects[o];
     const core::Mesh mesh = core::to_world(object);
     current_.object = int(o);
     current_.material = &scene_.materials[object.material];
-    const bool bump = current_.material->path != core::ShadingPath::Phong;
+    const bool bump = core::bump_path(current_.material->path);
     // L and H in object space: n_world ∝ M⁻ᵀ n_object, so n_world·L = n_object·(M⁻¹ L).
     to_object_ = glm::inverse(glm::dmat3(object.model));
     for (const auto& t : mesh.triangles) {
       ++triangles_in_;
+      current_.source = source++;
       const uint32_t idx[3] = {t.x, t.y, t.z};
       // A triangle with no area in space has no plane to interpolate on (the golden
       // model skips it too), even if snapping gives its screen image some area.

@@ -3,15 +3,46 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/bump_map.hpp"
+
 namespace modules {
 
 bool TextureFetchKernel::needed(const core::Scene& scene) {
   for (const auto& o : scene.objects)
-    if (scene.materials[o.material].texture >= 0) return true;
+    if (scene.materials[o.material].texture >= 0 &&
+        scene.materials[o.material].path != core::ShadingPath::TextureObject)
+      return true;
   return false;
 }
 
+TextureFetchKernel::TextureFetchKernel(const core::Scene& scene, const Options& options)
+    : scene_(scene), sampler_(options.filter, options.probes) {
+  levels_.resize(scene.textures.size());
+  maps_.resize(scene.textures.size());
+  for (const auto& o : scene.objects) {
+    const core::Material& m = scene.materials[size_t(o.material)];
+    if (m.path != core::ShadingPath::TextureScreen || !maps_[size_t(m.texture)].levels.empty()) continue;
+    const core::Texture& base = scene.textures[size_t(m.texture)];
+    levels_[size_t(m.texture)] = core::mip_levels(base, false);
+    MipMap& map = maps_[size_t(m.texture)];
+    map.levels.push_back(&base);
+    for (const auto& l : levels_[size_t(m.texture)]) map.levels.push_back(&l);
+  }
+}
+
+void TextureFetchKernel::process_filtered(SpanPacket& p) {
+  const uint64_t cycles_before = sampler_.cycles();
+  sample_span(*p.tri, p, maps_[size_t(p.tri->material->texture)], sampler_, p.tex, ops_, uv_range_,
+              capture_ ? captured_ : nullptr);
+  last_cycles_ = sampler_.cycles() - cycles_before;
+  lod_computations_ += uint64_t(p.count);
+  if (capture_)  // u, v, LOD from sample_span; no single texel address
+    for (int i = 0; i < p.count; ++i) captured_[4][i] = captured_[2][i], captured_[2][i] = captured_[3][i] = -1;
+}
+
 void TextureFetchKernel::process(SpanPacket& p) {
+  if (p.tri->material->path == core::ShadingPath::TextureScreen) return process_filtered(p);
+  last_cycles_ = 0;
   const TriangleSetup& t = *p.tri;
   const core::Texture& tex = scene_.textures[t.material->texture];
   const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
@@ -45,7 +76,8 @@ void TextureFetchKernel::process(SpanPacket& p) {
       x0 = std::clamp(x0, 0, tex.width - 1), x1 = std::clamp(x1, 0, tex.width - 1);
       y0 = std::clamp(y0, 0, tex.height - 1), y1 = std::clamp(y1, 0, tex.height - 1);
     }
-    if (capture_) captured_[0][i] = u, captured_[1][i] = v, captured_[2][i] = float(x0), captured_[3][i] = float(y0);
+    if (capture_)
+      captured_[0][i] = u, captured_[1][i] = v, captured_[2][i] = float(x0), captured_[3][i] = float(y0), captured_[4][i] = 0;
     const glm::vec4* row0 = &tex.texels[size_t(y0) * tex.width];
     const glm::vec4* row1 = &tex.texels[size_t(y1) * tex.width];
     const glm::vec4 t00 = row0[x0], t10 = row0[x1], t01 = row1[x0], t11 = row1[x1];

@@ -1,33 +1,47 @@
 #pragma once
 // The texture unit, for the material's colour texture: perspective-correct uv
-// (uv/w interpolated, times w), then a bilinear read of the finest level with the
-// shared addressing convention (core/texture.hpp: texel centres, wrap modes). Packets
-// of materials without a texture pass by untouched. Mip-mapping and the anisotropic
-// filters arrive with the texturing issue; the golden model reads the same level.
+// (uv/w interpolated, times w), then
+//  * phong: a bilinear read of the finest level with the shared addressing convention
+//    (core/texture.hpp: texel centres, wrap modes), as the golden model reads it;
+//  * texture-screen: the screen-space filter of `texture_fetch.filter` on the texture's
+//    mip chain (modules/common/sampler.hpp; docs/object-space-texturing.md).
+// Packets of materials without a texture, and of texture-object materials (whose colour
+// texel_project splats), pass by untouched.
 #include <string>
 #include <vector>
 
 #include "modules/common/packet.hpp"
+#include "modules/common/range.hpp"
+#include "modules/common/sampler.hpp"
 
 namespace modules {
 
 class TextureFetchKernel {
  public:
-  explicit TextureFetchKernel(const core::Scene& scene) : scene_(scene) {}
+  struct Options {
+    Filter filter = Filter::Trilinear;
+    int probes = 4;
+  };
+  TextureFetchKernel(const core::Scene& scene, const Options& options);
   static bool needed(const core::Scene& scene);
 
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
-  uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }
-  bool bypass(const SpanPacket& p) const { return p.tri->material->texture < 0; }
+  uint64_t work(const SpanPacket& p) const { return last_cycles_ > 0 ? last_cycles_ : uint64_t(p.count); }
+  bool bypass(const SpanPacket& p) const {
+    return p.tri->material->texture < 0 || p.tri->material->path == core::ShadingPath::TextureObject;
+  }
+  uint64_t lod_computations() const { return lod_computations_; }
 
   // Waveforms: uv, the texel address (x, y of the bilinear footprint's first texel)
   // and the filtered colour.
   void set_capture(bool on) { capture_ = on; }
-  static std::vector<std::string> trace_names() { return {"u", "v", "texel_x", "texel_y", "r", "g", "b"}; }
+  // texel_x, texel_y: the bilinear footprint's first texel (phong; −1 when filtered);
+  // lod: the filter's level of detail (texture-screen; 0 for phong).
+  static std::vector<std::string> trace_names() { return {"u", "v", "texel_x", "texel_y", "lod", "r", "g", "b"}; }
   void trace(const SpanPacket& p, int i, double* out) const {
-    for (int c = 0; c < 4; ++c) out[c] = captured_[c][i];
-    for (int c = 0; c < 3; ++c) out[4 + c] = p.tex[c][i];
+    for (int c = 0; c < 5; ++c) out[c] = captured_[c][i];
+    for (int c = 0; c < 3; ++c) out[5 + c] = p.tex[c][i];
   }
 
   // uv (2 mul, 2 add), texel coordinates (2 mul, 3 add), fractions (2 add), four
@@ -37,10 +51,17 @@ class TextureFetchKernel {
   static constexpr Ops kOpsPerSpan{/*add*/ 4, /*mul*/ 4};  // two plane seeds
 
  private:
+  void process_filtered(SpanPacket& p);  // texture-screen
+
   const core::Scene& scene_;
+  Sampler sampler_;
+  std::vector<std::vector<core::Texture>> levels_;  // mip levels 1 … by texture index (texture-screen)
+  std::vector<MipMap> maps_;                        // by texture index
+  uint64_t last_cycles_ = 0, lod_computations_ = 0;
+  ValueRange uv_range_;
   Ops ops_;
   bool capture_ = false;
-  float captured_[4][kSpanMax] = {};
+  float captured_[5][kSpanMax] = {};
 };
 
 }  // namespace modules

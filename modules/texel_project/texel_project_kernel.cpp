@@ -1,0 +1,250 @@
+#include "modules/texel_project/texel_project_kernel.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/bump_map.hpp"
+#include "core/coverage.hpp"
+#include "modules/common/sampler.hpp"
+
+namespace modules {
+
+PolygonRotation::PolygonRotation(const glm::dvec3& n) {
+  const double d = std::sqrt(n.y * n.y + n.z * n.z);
+  if (d > 1e-12) cos_a = n.z / d, sin_a = n.y / d;  // d = 0: n = ±x, any α; α = 0
+  cos_b = d, sin_b = n.x;
+}
+
+glm::dvec3 PolygonRotation::apply(const glm::dvec3& p, const glm::dvec3& n) const {
+  return {p.x * cos_b - p.z * cos_a * sin_b - p.y * sin_a * sin_b, p.y * cos_a - p.z * sin_a,
+          p.x * sin_b + p.y * n.y + p.z * n.z};
+}
+
+glm::dvec3 PolygonRotation::inverse(const glm::dvec3& q, const glm::dvec3& n) const {
+  return {q.x * cos_b + q.z * sin_b, -q.x * sin_a * sin_b + q.y * cos_a + q.z * n.y,
+          -q.x * cos_a * sin_b - q.y * sin_a + q.z * n.z};
+}
+
+bool TexelProjectKernel::needed(const core::Scene& scene) {
+  for (const auto& o : scene.objects)
+    if (scene.materials[size_t(o.material)].path == core::ShadingPath::TextureObject) return true;
+  return false;
+}
+
+TexelProjectKernel::TexelProjectKernel(const core::Scene& scene, int units)
+    : scene_(scene),
+      units_(std::max(1, units)),
+      view_projection_(scene.camera.projection() * scene.camera.view()),
+      unit_texels_(size_t(std::max(1, units)), 0),
+      unit_round_robin_(size_t(std::max(1, units)), 0) {
+  mips_.resize(scene.textures.size());
+  for (const auto& o : scene.objects) {
+    const core::Material& m = scene.materials[size_t(o.material)];
+    if (m.path == core::ShadingPath::TextureObject && mips_[size_t(m.texture)].empty())
+      mips_[size_t(m.texture)] = core::mip_levels(scene.textures[size_t(m.texture)], false);
+  }
+}
+
+void TexelProjectKernel::run(FramebufferKernel& fb) {
+  const int width = scene_.camera.width, height = scene_.camera.height;
+  accumulated_.assign(size_t(width) * size_t(height) * 4, 0.0);
+  uint32_t source = 0;
+  for (const auto& object : scene_.objects) {
+    const core::Material& m = scene_.materials[size_t(object.material)];
+    if (m.path != core::ShadingPath::TextureObject) {
+      source += uint32_t(object.mesh.triangles.size());
+      continue;
+    }
+    const core::Mesh mesh = core::to_world(object);
+    const core::Texture& texture = scene_.textures[size_t(m.texture)];
+    std::vector<const core::Texture*> levels = {&texture};
+    for (const auto& l : mips_[size_t(m.texture)]) levels.push_back(&l);
+    for (const auto& t : mesh.triangles) {
+      const glm::dvec3 P[3] = {mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]};
+      const glm::dvec2 uv[3] = {mesh.uvs[t.x], mesh.uvs[t.y], mesh.uvs[t.z]};
+      splat_triangle(P, uv, texture, levels, source++, fb);
+    }
+  }
+  // Resolve and composite: C = (Σ s·c / Σ s) ⊙ D + S.
+  core::Frame& frame = fb.frame();
+  float* rgb[3] = {frame.at("R").data(), frame.at("G").data(), frame.at("B").data()};
+  const auto& visible = fb.visible_source();
+  const auto& specular = fb.specular();
+  for (size_t i = 0; i < visible.size(); ++i) {
+    if (visible[i] == 0) continue;
+    ++covered_;
+    const double weight = accumulated_[i * 4 + 3];
+    if (!(weight > 0)) ++holes_;
+    for (int c = 0; c < 3; ++c) {
+      const float tex = weight > 0 ? float(accumulated_[i * 4 + size_t(c)] / weight) : 0.0f;
+      rgb[c][i] = tex * rgb[c][i] + specular[i * 3 + size_t(c)];
+    }
+  }
+  ops_ += kOpsPerPixel * covered_;
+  uint64_t busiest = 0;
+  for (uint64_t u : unit_texels_) busiest = std::max(busiest, u);
+  cycles_ = busiest + (covered_ + uint64_t(units_) - 1) / uint64_t(units_);
+}
+
+void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 uv[3], const core::Texture& texture,
+                                        const std::vector<const core::Texture*>& levels, uint32_t source,
+                                        const FramebufferKernel& fb) {
+  const int width = scene_.camera.width, height = scene_.camera.height;
+  const glm::dvec3 N = glm::cross(P[1] - P[0], P[2] - P[0]);
+  const double length = glm::length(N);
+  if (!(length > 0) || !std::isfinite(length)) return;  // no plane to rotate (setup skips it too)
+  const glm::dvec2 t1 = uv[1] - uv[0], t2 = uv[2] - uv[0];
+  const double det = t1.x * t2.y - t2.x * t1.y;
+  if (!(det != 0) || !std::isfinite(det)) return;  // no texture mapping: nothing to splat
+  // Only triangles that reach the frame's visible region.
+  glm::dvec4 clip[3];
+  for (int k = 0; k < 3; ++k) clip[k] = view_projection_ * glm::dvec4(P[k], 1.0);
+  const auto visible_part = core::clip_triangle(clip[0], clip[1], clip[2]);
+  if (visible_part.size() < 3) return;
+  ++polygons_;
+
+  // (1)–(2), (6), (7): the triangle laid parallel to XY; z' once.
+  const glm::dvec3 n = N / length;
+  const PolygonRotation R(n);
+  glm::dvec3 q[3];
+  for (int k = 0; k < 3; ++k) q[k] = R.apply(P[k], n);
+  const double z_rot = q[0].z;
+  ops_ += Ops{/*add*/ 2 + 6 + 2, /*mul*/ 6 + 2 + 3 * 7, /*div*/ 3, /*sqrt*/ 2};
+  // uv → (x', y'): affine over the rotated triangle.
+  const glm::dvec2 e1(q[1] - q[0]), e2(q[2] - q[0]);
+  const glm::dvec2 along_u = (e1 * t2.y - e2 * t1.y) / det, along_v = (e2 * t1.x - e1 * t2.x) / det;
+  const glm::dvec2 origin = glm::dvec2(q[0]) - along_u * uv[0].x - along_v * uv[0].y;
+  // M* = view-projection · [R]⁻¹ on (x', y', z', 1), z' folded into the offset: clip = A·(x', y') + a0.
+  const glm::dvec4 A_x = view_projection_ * glm::dvec4(R.inverse({1, 0, 0}, n), 0.0);
+  const glm::dvec4 A_y = view_projection_ * glm::dvec4(R.inverse({0, 1, 0}, n), 0.0);
+  const glm::dvec4 a0 = view_projection_ * glm::dvec4(R.inverse({0, 0, z_rot}, n), 1.0);
+  ops_ += Ops{/*add*/ 40, /*mul*/ 60, /*div*/ 1};
+  // Clip coordinates as an affine function of uv: c(u, v) = c_u·u + c_v·v + c_0.
+  const glm::dvec4 c_u = A_x * along_u.x + A_y * along_u.y, c_v = A_x * along_v.x + A_y * along_v.y;
+  const glm::dvec4 c_0 = A_x * origin.x + A_y * origin.y + a0;
+
+  // The LOD, once: pixels per texel step of level 0 at the most magnified point of the
+  // visible triangle (a vertex of its clipped polygon, where 1/w is largest); the level
+  // that makes the spacing at most one pixel. Magnified beyond level 0: m samples per
+  // texel and axis, read bilinearly.
+  ++lod_computations_;
+  const double W0 = texture.width, H0 = texture.height;
+  double pixels_per_texel = 0;
+  for (const auto& vertex : visible_part) {
+    const glm::dvec4 c = vertex.clip;
+    auto step = [&](const glm::dvec4& d, double texels) {
+      const double sx = 0.5 * width * (d.x * c.w - c.x * d.w) / (c.w * c.w);
+      const double sy = 0.5 * height * (d.y * c.w - c.y * d.w) / (c.w * c.w);
+      return std::sqrt(sx * sx + sy * sy) / texels;
+    };
+    pixels_per_texel = std::max({pixels_per_texel, step(c_u, W0), step(c_v, H0)});
+  }
+  ops_ += Ops{/*add*/ 12, /*mul*/ 24, /*div*/ 4, /*sqrt*/ 2, 0, /*lut*/ 1} * uint64_t(visible_part.size());
+  const int last = int(levels.size()) - 1;
+  int level = 0, m = 1;
+  if (!(pixels_per_texel > 0) || !std::isfinite(pixels_per_texel)) {
+    level = last;
+  } else if (pixels_per_texel > 1) {
+    m = int(std::min(16.0, std::ceil(pixels_per_texel)));  // magnified: samples between texels
+    ++oversampled_;
+  } else {
+    level = std::min(last, int(std::floor(-std::log2(pixels_per_texel))));
+  }
+  const core::Texture& tex = *levels[size_t(level)];
+  const int GW = tex.width * m, GH = tex.height * m;  // samples per unit of u and of v
+
+  // The samples covering the uv triangle, conservatively: within 1.5 sample spacings of
+  // it (the visibility test drops what lands on other triangles), so that no pixel near
+  // an edge is left without a sample.
+  const glm::dvec2 lo = glm::min(glm::min(uv[0], uv[1]), uv[2]), hi = glm::max(glm::max(uv[0], uv[1]), uv[2]);
+  const long i0 = long(std::floor(lo.x * GW - 0.5)) - 1, i1 = long(std::ceil(hi.x * GW - 0.5)) + 1;
+  const long j0 = long(std::floor((1 - hi.y) * GH - 0.5)) - 1, j1 = long(std::ceil((1 - lo.y) * GH - 0.5)) + 1;
+  const double margin = 1.5 * std::max(1.0 / GW, 1.0 / GH);
+  const double area2 = std::abs(det);
+  const double altitude[3] = {area2 / glm::length(uv[2] - uv[1]), area2 / glm::length(uv[0] - uv[2]),
+                              area2 / glm::length(uv[1] - uv[0])};
+  const auto& visible = fb.visible_source();
+  Sampler bilinear(Filter::Bilinear, 1);
+  MipMap finest;
+  finest.levels.push_back(&texture);
+  for (long j = j0; j <= j1; ++j)
+    for (long i = i0; i <= i1; ++i) {
+      const double u = (double(i) + 0.5) / GW, v = 1 - (double(j) + 0.5) / GH;
+      const double b1 = ((u - uv[0].x) * t2.y - (v - uv[0].y) * t2.x) / det;
+      const double b2 = ((v - uv[0].y) * t1.x - (u - uv[0].x) * t1.y) / det;
+      const double b0 = 1 - b1 - b2;
+      if (b0 * altitude[0] < -margin || b1 * altitude[1] < -margin || b2 * altitude[2] < -margin) continue;
+      // Back to the screen: (x', y') from uv, then M*; behind the eye: nothing to splat.
+      const float xr = float(origin.x + along_u.x * u + along_v.x * v);
+      const float yr = float(origin.y + along_u.y * u + along_v.y * v);
+      const float cx = float(A_x.x) * xr + float(A_y.x) * yr + float(a0.x);
+      const float cy = float(A_x.y) * xr + float(A_y.y) * yr + float(a0.y);
+      const float cw = float(A_x.w) * xr + float(A_y.w) * yr + float(a0.w);
+      if (!(cw > 1e-6f)) continue;
+      const float inv_w = 1.0f / cw;
+      const float x = (cx * inv_w * 0.5f + 0.5f) * float(width) - 0.5f;  // pixel centres at +½
+      const float y = (0.5f - cy * inv_w * 0.5f) * float(height) - 0.5f;
+      if (!(x > -1.0f && y > -1.0f && x < float(width) && y < float(height))) continue;  // off the frame
+      ++texels_;
+      ops_ += kOpsPerTexel;
+      // The sample's colour: the texel of the level (or, magnified, bilinear on level 0).
+      float colour[3];
+      if (m == 1) {
+        int tx = int(((i % tex.width) + tex.width) % tex.width), ty = int(((j % tex.height) + tex.height) % tex.height);
+        if (tex.wrap == core::Wrap::Clamp)
+          tx = int(std::clamp<long>(i, 0, tex.width - 1)), ty = int(std::clamp<long>(j, 0, tex.height - 1));
+        const glm::vec4& c = tex.texels[size_t(ty) * size_t(tex.width) + size_t(tx)];
+        colour[0] = c.r, colour[1] = c.g, colour[2] = c.b;
+      } else {
+        Ops sampler_ops;
+        bilinear.sample(finest, float(u), float(v), 0, 0, 0, 0, colour, sampler_ops);
+        ops_ += sampler_ops;
+        ops_.fetch -= 1;  // counted in kOpsPerTexel
+      }
+      // The area weights of the four pixels around the sample.
+      const float fx0 = std::floor(x), fy0 = std::floor(y);
+      const float fx = x - fx0, fy = y - fy0;
+      const float weight[4] = {(1 - fx) * (1 - fy), fx * fy, fx * (1 - fy), (1 - fx) * fy};  // S1 … S4
+      const int px[4] = {int(fx0), int(fx0) + 1, int(fx0) + 1, int(fx0)};
+      const int py[4] = {int(fy0), int(fy0) + 1, int(fy0), int(fy0) + 1};
+      weight_sum_error_ =
+          std::max(weight_sum_error_, std::abs(double(weight[0] + weight[1] + weight[2] + weight[3]) - 1.0));
+      for (int k = 0; k < 4; ++k) {
+        if (px[k] < 0 || py[k] < 0 || px[k] >= width || py[k] >= height || weight[k] <= 0) continue;
+        const size_t at = size_t(py[k]) * size_t(width) + size_t(px[k]);
+        if (visible[at] != source + 1) continue;  // the depth test: another surface is seen here
+        for (int c = 0; c < 3; ++c) accumulated_[at * 4 + size_t(c)] += double(weight[k] * colour[c]);
+        accumulated_[at * 4 + 3] += double(weight[k]);
+        ++splats_;
+        ops_ += kOpsPerAccumulation;
+      }
+      // Splat units own interleaved 4×4 pixel tiles (by the sample's first pixel).
+      const int tile = ((int(fx0) + 4) >> 2) + ((int(fy0) + 4) >> 2);
+      ++unit_texels_[size_t(tile % units_)];
+      ++unit_round_robin_[size_t(texels_ % uint64_t(units_))];
+    }
+}
+
+nlohmann::json TexelProjectKernel::stats() const {
+  uint64_t busiest = 0, busiest_rr = 0;
+  for (uint64_t u : unit_texels_) busiest = std::max(busiest, u);
+  for (uint64_t u : unit_round_robin_) busiest_rr = std::max(busiest_rr, u);
+  const double covered = covered_ > 0 ? double(covered_) : 1.0;
+  return {{"polygons", polygons_},
+          {"lod_computations", lod_computations_},
+          {"magnified_polygons", oversampled_},
+          {"texels", texels_},
+          {"texels_per_covered_pixel", double(texels_) / covered},
+          {"splats", splats_},
+          {"accumulations_per_covered_pixel", double(splats_) / covered},
+          {"covered_pixels", covered_},
+          {"holes", holes_},
+          {"weight_sum_error", weight_sum_error_},
+          {"units", units_},
+          {"unit_texels", unit_texels_},
+          {"busiest_unit_texels", busiest},
+          {"busiest_unit_texels_round_robin", busiest_rr},
+          {"cycles", cycles_}};
+}
+
+}  // namespace modules

@@ -1,0 +1,94 @@
+#pragma once
+// Texel projection and weighting (object-space texturing paper): texture-object
+// materials are textured in object space and filtered in the screen plane. Per
+// triangle:
+//
+//   N = normalize((B − A) × (C − A)),  d = √(Ny² + Nz²)
+//   cos α = Nz/d, sin α = Ny/d;  cos β = d, sin β = Nx   (1)–(2)  (d = 0: α = 0)
+//   x' = x cos β − z cos α sin β − y sin α sin β,  y' = y cos α − z sin α            (6)
+//   z' = x sin β + y Ny + z Nz, once per triangle                                   (7)
+//
+// — the rotation that lays the triangle parallel to the XY plane. One LOD per triangle
+// (docs/object-space-texturing.md: the level whose texel spacing is at most one pixel
+// on the most magnified part of the visible triangle). The texels of that level that
+// cover the rotated triangle are visited; each is rotated back and projected with one
+// matrix per triangle, M* = viewport · view-projection · [R]⁻¹, and splatted onto the
+// four pixels around it with the area weights
+//
+//   S1 = (1 − fx)(1 − fy), S2 = fx·fy, S3 = fx(1 − fy), S4 = (1 − fx) fy
+//
+// (pixel centres at +½). A pixel accumulates Σ s·c and Σ s from the texels of the
+// triangle visible there (the depth test: the framebuffer's visible triangle), and its
+// texture colour is Σ s·c / Σ s. The lighting block left C = tex ⊙ D + S to be
+// completed: this block composites it.
+//
+// The work runs after the frame's rasterization (the visibility it tests against must
+// be final): a second pass. The texels are independent; the stats show how they divide
+// across N parallel splat units.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "modules/common/packet.hpp"
+#include "modules/framebuffer/framebuffer_kernel.hpp"
+
+namespace modules {
+
+// The rotation of (1)–(2) for a unit normal n: rows of R, so that R·n = +z.
+struct PolygonRotation {
+  double cos_a = 1, sin_a = 0, cos_b = 1, sin_b = 0;
+  explicit PolygonRotation(const glm::dvec3& n);
+  glm::dvec3 apply(const glm::dvec3& p, const glm::dvec3& n) const;   // (6), (7)
+  glm::dvec3 inverse(const glm::dvec3& q, const glm::dvec3& n) const;  // Rᵀ·q
+};
+
+class TexelProjectKernel {
+ public:
+  TexelProjectKernel(const core::Scene& scene, int units);
+  static bool needed(const core::Scene& scene);
+
+  // The second pass over the frame in `fb`: splat, resolve, composite.
+  void run(FramebufferKernel& fb);
+
+  const Ops& ops() const { return ops_; }
+  // Cycles of the pass at II 1: the busiest splat unit (units own interleaved 4×4
+  // pixel tiles, so they never write the same pixel), then the resolve, spread likewise.
+  uint64_t cycles() const { return cycles_; }
+  nlohmann::json stats() const;
+
+  uint64_t polygons() const { return polygons_; }
+  uint64_t lod_computations() const { return lod_computations_; }
+  uint64_t texels() const { return texels_; }
+  uint64_t splats() const { return splats_; }
+  uint64_t covered() const { return covered_; }
+  uint64_t holes() const { return holes_; }
+  // Per texel: its four weights' sum minus 1, largest magnitude seen (should be ~1e-7).
+  double weight_sum_error() const { return weight_sum_error_; }
+
+  // Per texel: its position in the rotated plane from uv (4 mul, 4 add), M*·(x', y', z', 1)
+  // with z' folded (6 mul, 6 add for x, y, w), the perspective division (1 div, 2 mul),
+  // fractions (4 add), the four weights (4 mul, 4 add); per accepted pixel, Σ s·c and
+  // Σ s (3 mul, 4 add).
+  static constexpr Ops kOpsPerTexel{/*add*/ 18, /*mul*/ 16, /*div*/ 1, 0, 0, 0, /*fetch*/ 1};
+  static constexpr Ops kOpsPerAccumulation{/*add*/ 4, /*mul*/ 3};
+  // Per covered pixel: the resolve (1 div, 3 mul) and the composite tex ⊙ D + S (3 mul, 3 add).
+  static constexpr Ops kOpsPerPixel{/*add*/ 3, /*mul*/ 6, /*div*/ 1};
+
+ private:
+  void splat_triangle(const glm::dvec3 P[3], const glm::dvec2 uv[3], const core::Texture& texture,
+                      const std::vector<const core::Texture*>& levels, uint32_t source, const FramebufferKernel& fb);
+
+  const core::Scene& scene_;
+  int units_;
+  glm::dmat4 view_projection_;
+  std::vector<std::vector<core::Texture>> mips_;  // levels 1 … by texture index
+  std::vector<double> accumulated_;              // Σ s·c (3 a pixel) and Σ s
+  std::vector<uint64_t> unit_texels_, unit_round_robin_;
+  Ops ops_;
+  uint64_t polygons_ = 0, lod_computations_ = 0, texels_ = 0, splats_ = 0, covered_ = 0, holes_ = 0;
+  uint64_t cycles_ = 0, oversampled_ = 0;
+  double weight_sum_error_ = 0;
+};
+
+}  // namespace modules
