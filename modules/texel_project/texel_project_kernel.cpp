@@ -142,10 +142,16 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
   ops_ += Ops{/*add*/ 12, /*mul*/ 24, /*div*/ 4, /*sqrt*/ 2, 0, /*lut*/ 1} * uint64_t(visible_part.size());
   const int last = int(levels.size()) - 1;
   int level = 0, m = 1;
+  const glm::dvec2 uv_lo = glm::min(glm::min(uv[0], uv[1]), uv[2]), uv_hi = glm::max(glm::max(uv[0], uv[1]), uv[2]);
   if (!(pixels_per_texel > 0) || !std::isfinite(pixels_per_texel)) {
     level = last;
   } else if (pixels_per_texel > 1) {
-    m = int(std::min(16.0, std::ceil(pixels_per_texel)));  // magnified: samples between texels
+    // Magnified: m samples between texels per axis — as many as the spacing needs,
+    // within a budget of 64 samples per pixel of the frame for the triangle's uv box
+    // (beyond it, a triangle reaching into the camera could leave holes).
+    const double box = std::max(1e-12, (uv_hi.x - uv_lo.x) * (uv_hi.y - uv_lo.y)) * W0 * H0;
+    const double budget = std::sqrt(64.0 * width * height / box);
+    m = int(std::max(1.0, std::min(std::ceil(pixels_per_texel), budget)));
     ++oversampled_;
   } else {
     level = std::min(last, int(std::floor(-std::log2(pixels_per_texel))));
@@ -156,7 +162,7 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
   // The samples covering the uv triangle, conservatively: within 1.5 sample spacings of
   // it (the visibility test drops what lands on other triangles), so that no pixel near
   // an edge is left without a sample.
-  const glm::dvec2 lo = glm::min(glm::min(uv[0], uv[1]), uv[2]), hi = glm::max(glm::max(uv[0], uv[1]), uv[2]);
+  const glm::dvec2 lo = uv_lo, hi = uv_hi;
   const long i0 = long(std::floor(lo.x * GW - 0.5)) - 1, i1 = long(std::ceil(hi.x * GW - 0.5)) + 1;
   const long j0 = long(std::floor((1 - hi.y) * GH - 0.5)) - 1, j1 = long(std::ceil((1 - lo.y) * GH - 0.5)) + 1;
   const double margin = 1.5 * std::max(1.0 / GW, 1.0 / GH);
