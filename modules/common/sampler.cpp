@@ -101,8 +101,10 @@ void Sampler::trilinear(const MipMap& map, float lod, float u, float v, float ou
 
 void Sampler::ewa(const MipMap& map, float u, float v, float ax, float ay, float bx, float by, float out[3],
                   Ops& ops) {
-  // The footprint's axes in texel coordinates (s right, r down: r runs against v).
-  ay = -ay, by = -by;
+  // The ellipse inscribed in the pixel's footprint: the half-axes are half the uv
+  // derivatives (the pixel spans ±½ around its centre), in texel coordinates (s right,
+  // r down: r runs against v).
+  ax *= 0.5f, bx *= 0.5f, ay *= -0.5f, by *= -0.5f;
   float a2 = ax * ax + ay * ay, b2 = bx * bx + by * by;
   if (a2 < b2) std::swap(ax, bx), std::swap(ay, by), std::swap(a2, b2);  // a: the major axis
   // At most 16 : 1, by widening the minor axis (else a long ellipse reads a very fine level).
@@ -176,15 +178,18 @@ void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx
   } else if (filter_ == Filter::Anisotropic) {
     // Probes along the major axis, spaced by its length over N; the level of that
     // spacing, but never finer than the minor axis (1 mul for the N², 2 mul per step).
+    // As many probes as the footprint's anisotropy asks, up to `probes`: N = ⌈major/minor⌉.
     const bool a_major = a2 >= b2;
     const float major2 = a_major ? a2 : b2, minor2 = a_major ? b2 : a2;
-    const float n = float(probes_);
+    const float ratio = minor2 > 0 ? std::sqrt(major2 / minor2) : float(probes_);
+    const int count = std::isfinite(ratio) ? std::clamp(int(std::ceil(ratio - 1e-3f)), 1, probes_) : probes_;
+    const float n = float(count);
     lod_ = lod_of(std::max(minor2, major2 / (n * n)));
     const float du = (a_major ? dudx : dudy) / n, dv = (a_major ? dvdx : dvdy) / n;
-    ops += Ops{0, /*mul*/ 1, /*div*/ 1};  // N², major²/N²; the step by 1/N is a constant: 2 mul
-    ops.mul += 2;
+    ops += Ops{/*add*/ 1, /*mul*/ 1, /*div*/ 2, /*sqrt*/ 1};  // the ratio, N², major²/N²
+    ops.mul += 2;                                          // the step: 2 mul by 1/N (a table)
     float sum[3] = {0, 0, 0};
-    for (int k = 0; k < probes_; ++k) {
+    for (int k = 0; k < count; ++k) {
       const float offset = float(k) + 0.5f - 0.5f * n;  // centred on the pixel
       float probe[3];
       trilinear(map, lod_, u + du * offset, v + dv * offset, probe, ops);

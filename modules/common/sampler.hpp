@@ -5,12 +5,13 @@
 //   nearest      the nearest texel of the nearest level
 //   bilinear     four texels of the nearest level
 //   trilinear    bilinear on the two levels around the LOD, blended
-//   anisotropic  N trilinear probes spread along the footprint's major axis, averaged,
-//                at the level of the footprint's width over N (not below its minor axis)
-//   ewa          Heckbert's elliptical weighted average: every texel inside the
-//                footprint's ellipse (eccentricity capped at 16) on the level of its
-//                minor axis, weighted by a Gaussian of its elliptical radius — the
-//                quality anchor of the screen-space filters
+//   anisotropic  N = ⌈major/minor⌉ trilinear probes (at most `probes`) spread along the
+//                footprint's major axis, averaged, at the level of the footprint's
+//                length over N (not below its minor axis)
+//   ewa          Heckbert's elliptical weighted average: every texel inside the ellipse
+//                inscribed in the pixel's footprint (eccentricity capped at 16), widened
+//                by a unit reconstruction filter, on the level of its minor axis, weighted
+//                by a Gaussian of its elliptical radius — the quality anchor
 //
 // with the addressing convention of core/texture.hpp (texel centres, wrap modes). It
 // counts what the hardware spends: texel fetches, and the memory lines they touch —

@@ -173,6 +173,11 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
   Sampler bilinear(Filter::Bilinear, 1);
   MipMap finest;
   finest.levels.push_back(&texture);
+  // Memory: the texture is read in 4×4-texel tiles, one line each; a unit streams a
+  // triangle's texels row by row, so each tile row costs its span of tiles.
+  auto floor_div = [](long a, long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
+  const long tile_row0 = floor_div(floor_div(j0, m), 4);
+  std::vector<std::pair<long, long>> tile_span(size_t(floor_div(floor_div(j1, m), 4) - tile_row0 + 1), {1, 0});
   for (long j = j0; j <= j1; ++j)
     for (long i = i0; i <= i1; ++i) {
       const double u = (double(i) + 0.5) / GW, v = 1 - (double(j) + 0.5) / GH;
@@ -193,6 +198,10 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
       if (!(x > -1.0f && y > -1.0f && x < float(width) && y < float(height))) continue;  // off the frame
       ++texels_;
       ops_ += kOpsPerTexel;
+      auto& span = tile_span[size_t(floor_div(floor_div(j, m), 4) - tile_row0)];
+      const long tile = floor_div(floor_div(i, m), 4);
+      if (span.first > span.second) span = {tile, tile};
+      else span.first = std::min(span.first, tile), span.second = std::max(span.second, tile);
       // The sample's colour: the texel of the level (or, magnified, bilinear on level 0).
       float colour[3];
       if (m == 1) {
@@ -204,8 +213,9 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
       } else {
         Ops sampler_ops;
         bilinear.sample(finest, float(u), float(v), 0, 0, 0, 0, colour, sampler_ops);
+        sampler_ops.line = 0;  // lines: counted by tile rows below
         ops_ += sampler_ops;
-        ops_.fetch -= 1;  // counted in kOpsPerTexel
+        ops_.fetch -= 1;       // counted in kOpsPerTexel
       }
       // The area weights of the four pixels around the sample.
       const float fx0 = std::floor(x), fy0 = std::floor(y);
@@ -225,10 +235,12 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
         ops_ += kOpsPerAccumulation;
       }
       // Splat units own interleaved 4×4 pixel tiles (by the sample's first pixel).
-      const int tile = ((int(fx0) + 4) >> 2) + ((int(fy0) + 4) >> 2);
-      ++unit_texels_[size_t(tile % units_)];
+      const int pixel_tile = ((int(fx0) + 4) >> 2) + ((int(fy0) + 4) >> 2);
+      ++unit_texels_[size_t(pixel_tile % units_)];
       ++unit_round_robin_[size_t(texels_ % uint64_t(units_))];
     }
+  for (const auto& span : tile_span)
+    if (span.first <= span.second) ops_.line += uint64_t(span.second - span.first + 1);
 }
 
 nlohmann::json TexelProjectKernel::stats() const {

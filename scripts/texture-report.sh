@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# The texturing report: prints the Markdown tables that docs/object-space-texturing.md
+# keeps (accuracy of object-space texturing and of each screen-space filter against the
+# footprint-averaged golden model; texel fetches, arithmetic, LOD computations and holes
+# per pixel; parallel splat units). The photograph is skimage's astronaut (CC0), taken
+# from the Debian package python3-skimage into out/assets (downloaded, not installed;
+# without it the photograph's table is left out). About 120 renders, a few minutes.
+# Usage: scripts/texture-report.sh [--images DIR]
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+"$root/scripts/setup.sh"
+"$root/scripts/build.sh" >/dev/null
+assets=$root/out/assets
+photo=$assets/astronaut.png
+if [[ ! -s $photo ]]; then
+  mkdir -p "$assets/pkg"
+  if (cd "$assets/pkg" && apt-get download -q python3-skimage >/dev/null 2>&1); then
+    dpkg -x "$assets"/pkg/python3-skimage_*.deb "$assets/pkg/x"
+    cp "$(find "$assets/pkg/x" -name astronaut.png | head -1)" "$photo"
+    rm -rf "$assets/pkg"
+  else
+    echo "texture-report.sh: python3-skimage could not be downloaded; no photograph" >&2
+    photo=""
+  fi
+fi
+exec python3 "$root/scripts/texture-report.py" "$root/build/app/shadetlm" "$photo" "$@"
