@@ -8,6 +8,7 @@ Usage: scripts/bump-report.py SHADETLM_BINARY [--images DIR]"""
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -239,4 +240,5 @@ for surface in SURFACES:
     print("| %s | %g | %s | %s | %s |" % (surface, SQUARE_K[surface], db(psnr_between(sq_exr, tg_exr)),
                                          db(err(sq)[2]), db(err(tg)[2])))
 
+shutil.rmtree(TMP, ignore_errors=True)
 print("\n%d renders; `%s`." % (runs, " ".join(["scripts/bump-report.sh"] + (["--images", IMAGES] if IMAGES else []))))

@@ -8,6 +8,7 @@ Usage: scripts/texture-report.py SHADETLM_BINARY PHOTO_PNG_OR_EMPTY [--images DI
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -97,6 +98,12 @@ for texture in TEXTURES:
             if IMAGES and texture == "checker" and view == 85:
                 preview = os.path.join(IMAGES, "texture-85-%s.png" % label.split(" ")[0].lower())
             results[(texture, view, label)] = figures(render(doc, path, filt, probes, preview=preview), path)
+        if IMAGES and texture == "checker" and view == 85:  # and the golden model's
+            with open(os.path.join(TMP, "golden.json"), "w") as f:
+                json.dump(doc, f)
+            subprocess.run([BIN, "reference", os.path.join(TMP, "golden.json"), "-o", os.path.join(TMP, "golden.exr"),
+                            "--preview", os.path.join(IMAGES, "texture-85-golden.png")], check=True,
+                           stdout=subprocess.DEVNULL)
 
 print("## Accuracy against the golden model (claim 1)\n")
 print("PSNR (dB) of the colour against the footprint-averaged golden model (16×16 stratified samples per pixel); "
@@ -144,3 +151,4 @@ for units in [1, 2, 4, 8, 16, 32]:
         d["texels"] / units / max(1, d["busiest_unit_texels"]), d["cycles"], base / d["cycles"]))
 
 print("\n%d renders; `scripts/texture-report.sh%s`." % (runs, " --images " + IMAGES if IMAGES else ""))
+shutil.rmtree(TMP, ignore_errors=True)

@@ -107,6 +107,7 @@ hostile normal-map-not-exr "materials.m.normal_map" render pngnm.json
 bump stretched.json '{"path": "bump-object", "height_map": "h"}'
 sed -i 's/"material": "m"}/"material": "m", "transform": {"scale": [1, 2, 1]}}/' stretched.json
 hostile bump-object-stretched "objects.0.transform" render stretched.json
+bump notex.json '{"path": "texture-object"}'; hostile texture-path-without-texture 'materials.m.path: texture-object needs a texture' render notex.json
 "$bin" reference --set 'camera.resolution=[12,8]' -o odd.exr --preview odd.png >/dev/null
 hostile precompute-missing-height "absent.png" "$bin" precompute normalmap absent.png -o out.exr
 hostile precompute-truncated-height "trunc.png" "$bin" precompute normalmap trunc.png -o out.exr
