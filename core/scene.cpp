@@ -257,6 +257,15 @@ void check_bump_material(JsonReader& r, const Material& m, const std::vector<Tex
     r.fail("path", std::string(to_string(m.path)) + " needs a texture in material \"" + m.name + "\"");
   if ((m.path == ShadingPath::TextureScreen || m.path == ShadingPath::TextureObject) && m.height_map >= 0)
     r.fail("height_map", std::string(to_string(m.path)) + " does not bump-map (one path per material)");
+  if (m.path == ShadingPath::TextureScreen || m.path == ShadingPath::TextureObject) {
+    // Mip levels halve exactly only for power-of-two sides (the texture unit addresses
+    // them by shifts).
+    const Texture& t = textures[size_t(m.texture)];
+    auto power_of_two = [](int n) { return n > 0 && (n & (n - 1)) == 0; };
+    if (!power_of_two(t.width) || !power_of_two(t.height))
+      r.fail("texture", "texture \"" + t.name + "\" is " + std::to_string(t.width) + "×" + std::to_string(t.height) + ": " +
+                            to_string(m.path) + " needs power-of-two sides (mip levels); resample the image");
+  }
   const bool bump = bump_path(m.path);
   if (!bump && m.normal_map >= 0) r.fail("normal_map", "given, but the path is phong (use a bump-* path)");
   if (m.path == ShadingPath::BumpClassic && m.normal_map >= 0)

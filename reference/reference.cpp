@@ -48,10 +48,11 @@ double jitter(uint32_t a, uint32_t b, uint32_t c) {
 // one jittered sample in each; each sample's ray meets the triangle's plane (extended
 // beyond its edges), where the barycentric mix of the vertex uvs is perspective-correct;
 // a bilinear read of the finest level there. Samples whose ray misses the plane are
-// left out.
+// left out (if all do — a pixel on the plane's vanishing line — the pixel centre's uv).
 glm::dvec3 footprint_average(const core::Texture& tex, int px, int py, const glm::dvec3& eye, const glm::dvec3& fwd,
                              const glm::dvec3& right_step, const glm::dvec3& up_step, const glm::dvec3 P[3],
-                             const glm::dvec3& Ng, const glm::dvec2 uv[3], int width, int height) {
+                             const glm::dvec3& Ng, const glm::dvec2 uv[3], const glm::dvec2& centre_uv, int width,
+                             int height) {
   constexpr int kStrata = 16;
   const double Ng2 = glm::dot(Ng, Ng);
   glm::dvec3 sum(0);
@@ -72,7 +73,7 @@ glm::dvec3 footprint_average(const core::Texture& tex, int px, int py, const glm
       sum += glm::dvec3(tex.bilinear(b0 * uv[0] + b1 * uv[1] + (1 - b0 - b1) * uv[2]));
       ++samples;
     }
-  return samples > 0 ? sum / double(samples) : glm::dvec3(0);
+  return samples > 0 ? sum / double(samples) : glm::dvec3(tex.bilinear(centre_uv));
 }
 
 // ∂h/∂u and ∂h/∂v of the bilinearly interpolated height map (first channel, finest
@@ -221,7 +222,7 @@ Image render(const core::Scene& scene) {
             if (material.path == core::ShadingPath::TextureScreen || material.path == core::ShadingPath::TextureObject) {
               const glm::dvec2 uvs[3] = {mesh.uvs[tri.x], mesh.uvs[tri.y], mesh.uvs[tri.z]};
               tex = footprint_average(scene.textures[material.texture], px, py, eye, fwd, right * (tan_half * aspect),
-                                      up * tan_half, P, Ng, uvs, img.width, img.height);
+                                      up * tan_half, P, Ng, uvs, uv, img.width, img.height);
             } else if (material.texture >= 0) {
               tex = glm::dvec3(scene.textures[material.texture].bilinear(uv));
             }

@@ -102,34 +102,41 @@ void Sampler::trilinear(const MipMap& map, float lod, float u, float v, float ou
 void Sampler::ewa(const MipMap& map, float u, float v, float ax, float ay, float bx, float by, float out[3],
                   Ops& ops) {
   // The ellipse inscribed in the pixel's footprint: the half-axes are half the uv
-  // derivatives (the pixel spans ±½ around its centre), in texel coordinates (s right,
-  // r down: r runs against v).
+  // derivatives (the pixel spans ±½ around its centre), in texel coordinates of level 0
+  // (s right, r down: r runs against v). Its matrix M = J·Jᵀ (J the half-axes as
+  // columns): the points x with xᵀ M⁻¹ x < 1.
   ax *= 0.5f, bx *= 0.5f, ay *= -0.5f, by *= -0.5f;
-  float a2 = ax * ax + ay * ay, b2 = bx * bx + by * by;
-  if (a2 < b2) std::swap(ax, bx), std::swap(ay, by), std::swap(a2, b2);  // a: the major axis
-  // At most 16 : 1, by widening the minor axis (else a long ellipse reads a very fine level).
-  constexpr float kMaxEccentricity = 16;
-  if (b2 * kMaxEccentricity * kMaxEccentricity < a2) {
-    const float grow = std::sqrt(a2 / b2) / kMaxEccentricity;
-    if (std::isfinite(grow)) bx *= grow, by *= grow, b2 *= grow * grow;
-    else bx = -ay / kMaxEccentricity, by = ax / kMaxEccentricity, b2 = a2 / (kMaxEccentricity * kMaxEccentricity);
+  float p = ax * ax + bx * bx, q = ax * ay + bx * by, r = ay * ay + by * by;
+  // The true axes are M's eigenvalues: major² = λ1, minor² = λ2. At most 16 : 1, by
+  // widening (M + c·I) — else a long ellipse would read a very fine level.
+  const float mean = 0.5f * (p + r), dev = std::sqrt(0.25f * (p - r) * (p - r) + q * q);
+  const float major2 = mean + dev;
+  float minor2 = mean - dev;
+  constexpr float kMaxEccentricity2 = 16 * 16;
+  if (minor2 * kMaxEccentricity2 < major2) {
+    const float widen = major2 / kMaxEccentricity2 - minor2;
+    p += widen, r += widen, minor2 += widen;
   }
   const int last = int(map.levels.size()) - 1;
-  const float minor_lod = b2 > 1.0f ? 0.5f * std::log2(b2) : 0.0f;
+  const float minor_lod = minor2 > 1.0f ? 0.5f * std::log2(minor2) : 0.0f;
   const int level = std::isfinite(minor_lod) ? std::min(int(minor_lod), last) : last;
   lod_ = float(level);
   const core::Texture& t = *map.levels[size_t(level)];
-  const float scale = 1.0f / float(1 << level);
-  ax *= scale, ay *= scale, bx *= scale, by *= scale;
-  // The ellipse A s² + B s r + C r² < F (Heckbert), the +1 a unit reconstruction filter.
-  float A = ay * ay + by * by + 1, B = -2 * (ax * ay + bx * by), C = ax * ax + bx * bx + 1;
-  const float F = A * C - B * B * 0.25f;
-  A /= F, B /= F, C /= F;
-  const float det = A * C - B * B * 0.25f;  // the bounding box of the ellipse
-  const float half_s = std::sqrt(C / det), half_r = std::sqrt(A / det);
+  const core::Texture& base = *map.levels.front();
+  // To the level's texels, axis by axis (a non-square texture's short side stops at 1).
+  const float ks = float(t.width) / float(base.width), kr = float(t.height) / float(base.height);
+  p *= ks * ks, q *= ks * kr, r *= kr * kr;
+  // Widened by a unit reconstruction filter (Heckbert's +1), then the quadratic form of
+  // M⁻¹: A s² + B s r + C r² < 1.
+  p += 1, r += 1;
+  const float det = p * r - q * q;
+  const float A = r / det, B = -2 * q / det, C = p / det;
+  // The ellipse's bounding box, no larger than the level (at the coarsest level a huge
+  // footprint covers the whole texture, and every texel once is enough).
+  const float half_s = std::min(std::sqrt(p), float(t.width)), half_r = std::min(std::sqrt(r), float(t.height));
   float s0, r0;
   texel_coordinates(t, u, v, s0, r0);
-  ops += Ops{/*add*/ 12, /*mul*/ 24, /*div*/ 4, /*sqrt*/ 2, 0, /*lut*/ 1};
+  ops += Ops{/*add*/ 14, /*mul*/ 26, /*div*/ 5, /*sqrt*/ 3, 0, /*lut*/ 1};
   float sum[3] = {0, 0, 0}, weights = 0;
   const int x_lo = int(std::ceil(s0 - half_s)), x_hi = int(std::floor(s0 + half_s));
   const int y_lo = int(std::ceil(r0 - half_r)), y_hi = int(std::floor(r0 + half_r));
@@ -152,7 +159,7 @@ void Sampler::ewa(const MipMap& map, float u, float v, float ax, float ay, float
   if (weights > 0) {
     for (int k = 0; k < 3; ++k) out[k] = sum[k] / weights;
     ops += Ops{0, 0, /*div*/ 3};
-  } else {  // a footprint smaller than the texel grid's gaps (cannot happen with the +1): bilinear
+  } else {  // no texel centre inside (cannot happen with the +1): bilinear
     bilinear(t, level, u, v, out, ops);
   }
 }

@@ -85,7 +85,9 @@ bool SetupKernel::setup(const Vertex v[3], const core::SnappedTriangle& coverage
       perspective_plane(t.v[c], eye[c] - v[0].position[c], eye[c] - v[1].position[c],
                         eye[c] - v[2].position[c]);
   }
-  if (t.material->texture >= 0 || t.material->path != core::ShadingPath::Phong)
+  // uv planes for the texture unit (texture-object reads uv in texel_project instead).
+  if ((t.material->texture >= 0 && t.material->path != core::ShadingPath::TextureObject) ||
+      core::bump_path(t.material->path))
     for (int c = 0; c < 2; ++c) perspective_plane(t.uv[c], v[0].uv[c], v[1].uv[c], v[2].uv[c]);
   if (core::bump_path(t.material->path)) setup_bump(v, inv_w, ps, pu_, pv_, t, ops);
   ops_ += ops;

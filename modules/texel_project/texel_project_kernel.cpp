@@ -93,43 +93,64 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
   const glm::dvec3 N = glm::cross(P[1] - P[0], P[2] - P[0]);
   const double length = glm::length(N);
   if (!(length > 0) || !std::isfinite(length)) return;  // no plane to rotate (setup skips it too)
-  const glm::dvec2 t1 = uv[1] - uv[0], t2 = uv[2] - uv[0];
-  const double det = t1.x * t2.y - t2.x * t1.y;
-  if (!(det != 0) || !std::isfinite(det)) return;  // no texture mapping: nothing to splat
   // Only triangles that reach the frame's visible region.
   glm::dvec4 clip[3];
   for (int k = 0; k < 3; ++k) clip[k] = view_projection_ * glm::dvec4(P[k], 1.0);
   const auto visible_part = core::clip_triangle(clip[0], clip[1], clip[2]);
   if (visible_part.size() < 3) return;
   ++polygons_;
+  const auto& visible = fb.visible_source();
+  const glm::dvec2 t1 = uv[1] - uv[0], t2 = uv[2] - uv[0];
+  const double det = t1.x * t2.y - t2.x * t1.y;
+  if (!(std::abs(det) * texture.width * texture.height > 1e-6) || !std::isfinite(det)) {
+    // No texture mapping (the uv triangle covers less than a millionth of a texel): the
+    // texture is constant over the triangle, its value at the uv. One sample, weight 1,
+    // on every pixel it is seen at.
+    const glm::vec4 c = texture.bilinear((uv[0] + uv[1] + uv[2]) / 3.0);
+    glm::dvec2 lo(width, height), hi(0, 0);
+    for (const auto& vertex : visible_part) {
+      const glm::dvec3 sp = core::to_screen(vertex.clip, width, height);
+      lo = glm::min(lo, glm::dvec2(sp)), hi = glm::max(hi, glm::dvec2(sp));
+    }
+    ops_.fetch += 4;
+    for (int y = std::max(0, int(lo.y) - 1); y <= std::min(height - 1, int(hi.y) + 1); ++y)
+      for (int x = std::max(0, int(lo.x) - 1); x <= std::min(width - 1, int(hi.x) + 1); ++x) {
+        const size_t at = size_t(y) * size_t(width) + size_t(x);
+        if (visible[at] != source + 1) continue;
+        for (int k = 0; k < 3; ++k) accumulated_[at * 4 + size_t(k)] += c[k];
+        accumulated_[at * 4 + 3] += 1;
+        ++splats_;
+      }
+    return;
+  }
 
-  // (1)–(2), (6), (7): the triangle laid parallel to XY; z' once.
+  // (1)–(2), (6), (7): the triangle laid parallel to XY; z' once. Positions in the
+  // rotated plane are taken relative to vertex A, (x' − x'_A, y' − y'_A), so that float
+  // keeps their precision far from the origin; M* then adds A's clip position.
   const glm::dvec3 n = N / length;
   const PolygonRotation R(n);
   glm::dvec3 q[3];
   for (int k = 0; k < 3; ++k) q[k] = R.apply(P[k], n);
-  const double z_rot = q[0].z;
-  ops_ += Ops{/*add*/ 2 + 6 + 2, /*mul*/ 6 + 2 + 3 * 7, /*div*/ 3, /*sqrt*/ 2};
-  // uv → (x', y'): affine over the rotated triangle.
+  ops_ += Ops{/*add*/ 2 + 9 + 2, /*mul*/ 6 + 2 + 3 * 6 + 2, /*div*/ 3, /*sqrt*/ 2};
+  // uv → (x', y') − A: affine over the rotated triangle.
   const glm::dvec2 e1(q[1] - q[0]), e2(q[2] - q[0]);
   const glm::dvec2 along_u = (e1 * t2.y - e2 * t1.y) / det, along_v = (e2 * t1.x - e1 * t2.x) / det;
-  const glm::dvec2 origin = glm::dvec2(q[0]) - along_u * uv[0].x - along_v * uv[0].y;
-  // M* = view-projection · [R]⁻¹ on (x', y', z', 1), z' folded into the offset: clip = A·(x', y') + a0.
+  // M* = view-projection · [R]⁻¹: clip = A·(x' − x'_A, y' − y'_A) + clip(A) (z' − z'_A = 0).
   const glm::dvec4 A_x = view_projection_ * glm::dvec4(R.inverse({1, 0, 0}, n), 0.0);
   const glm::dvec4 A_y = view_projection_ * glm::dvec4(R.inverse({0, 1, 0}, n), 0.0);
-  const glm::dvec4 a0 = view_projection_ * glm::dvec4(R.inverse({0, 0, z_rot}, n), 1.0);
-  ops_ += Ops{/*add*/ 40, /*mul*/ 60, /*div*/ 1};
-  // Clip coordinates as an affine function of uv: c(u, v) = c_u·u + c_v·v + c_0.
+  const glm::dvec4 a0 = clip[0];
+  ops_ += Ops{/*add*/ 6 + 8 + 16, /*mul*/ 12 + 8 + 24, /*div*/ 1};
+  // Clip coordinates as an affine function of uv (for the LOD): c_u·du + c_v·dv + clip(A).
   const glm::dvec4 c_u = A_x * along_u.x + A_y * along_u.y, c_v = A_x * along_v.x + A_y * along_v.y;
-  const glm::dvec4 c_0 = A_x * origin.x + A_y * origin.y + a0;
 
   // The LOD, once: pixels per texel step of level 0 at the most magnified point of the
-  // visible triangle (a vertex of its clipped polygon, where 1/w is largest); the level
-  // that makes the spacing at most one pixel. Magnified beyond level 0: m samples per
-  // texel and axis, read bilinearly.
+  // visible triangle (taken at the vertices of its clipped polygon, where 1/w is
+  // largest); the level that makes the spacing at most one pixel. Magnified beyond
+  // level 0: m samples per texel and axis, read bilinearly.
   ++lod_computations_;
   const double W0 = texture.width, H0 = texture.height;
   double pixels_per_texel = 0;
+  glm::dvec2 uv_lo(1e300), uv_hi(-1e300);  // the uv box of the visible part
   for (const auto& vertex : visible_part) {
     const glm::dvec4 c = vertex.clip;
     auto step = [&](const glm::dvec4& d, double texels) {
@@ -138,59 +159,67 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
       return std::sqrt(sx * sx + sy * sy) / texels;
     };
     pixels_per_texel = std::max({pixels_per_texel, step(c_u, W0), step(c_v, H0)});
+    const glm::dvec2 at = vertex.bary.x * uv[0] + vertex.bary.y * uv[1] + vertex.bary.z * uv[2];
+    uv_lo = glm::min(uv_lo, at), uv_hi = glm::max(uv_hi, at);
   }
   ops_ += Ops{/*add*/ 12, /*mul*/ 24, /*div*/ 4, /*sqrt*/ 2, 0, /*lut*/ 1} * uint64_t(visible_part.size());
   const int last = int(levels.size()) - 1;
-  int level = 0, m = 1;
-  const glm::dvec2 uv_lo = glm::min(glm::min(uv[0], uv[1]), uv[2]), uv_hi = glm::max(glm::max(uv[0], uv[1]), uv[2]);
-  if (!(pixels_per_texel > 0) || !std::isfinite(pixels_per_texel)) {
-    level = last;
-  } else if (pixels_per_texel > 1) {
-    // Magnified: m samples between texels per axis — as many as the spacing needs,
-    // within a budget of 64 samples per pixel of the frame for the triangle's uv box
-    // (beyond it, a triangle reaching into the camera could leave holes).
-    const double box = std::max(1e-12, (uv_hi.x - uv_lo.x) * (uv_hi.y - uv_lo.y)) * W0 * H0;
-    const double budget = std::sqrt(64.0 * width * height / box);
-    m = int(std::max(1.0, std::min(std::ceil(pixels_per_texel), budget)));
-    ++oversampled_;
-  } else {
-    level = std::min(last, int(std::floor(-std::log2(pixels_per_texel))));
+  int level = 0;
+  double m = 1;
+  if (!(pixels_per_texel > 0) || !std::isfinite(pixels_per_texel)) level = last;
+  else if (pixels_per_texel > 1) m = std::ceil(pixels_per_texel), ++oversampled_;
+  else level = std::min(last, int(std::floor(-std::log2(pixels_per_texel))));
+  // A budget of 64 samples per frame pixel for the visible part's uv box: beyond it the
+  // sampling coarsens (fewer samples between texels, then coarser levels), which may
+  // leave holes; such polygons are counted.
+  const double box = std::max(1e-12, (uv_hi.x - uv_lo.x) * (uv_hi.y - uv_lo.y)) * W0 * H0;
+  const double budget = 64.0 * double(width) * double(height);
+  auto samples = [&] { return box * m * m / std::pow(4.0, level); };
+  if (samples() > budget) {
+    ++budget_limited_;
+    if (m > 1) m = std::max(1.0, std::floor(std::sqrt(budget / box)));
+    while (samples() > budget && level < last) ++level;
   }
   const core::Texture& tex = *levels[size_t(level)];
-  const int GW = tex.width * m, GH = tex.height * m;  // samples per unit of u and of v
+  const double GW = tex.width * m, GH = tex.height * m;  // samples per unit of u and of v
 
   // The samples covering the uv triangle, conservatively: within 1.5 sample spacings of
   // it (the visibility test drops what lands on other triangles), so that no pixel near
-  // an edge is left without a sample.
-  const glm::dvec2 lo = uv_lo, hi = uv_hi;
-  const long i0 = long(std::floor(lo.x * GW - 0.5)) - 1, i1 = long(std::ceil(hi.x * GW - 0.5)) + 1;
-  const long j0 = long(std::floor((1 - hi.y) * GH - 0.5)) - 1, j1 = long(std::ceil((1 - lo.y) * GH - 0.5)) + 1;
+  // an edge is left without a sample; only over the visible part's uv box.
+  auto bound = [](double x) { return long(std::clamp(x, -4e9, 4e9)); };
+  const long i0 = bound(std::floor(uv_lo.x * GW - 0.5)) - 1, i1 = bound(std::ceil(uv_hi.x * GW - 0.5)) + 1;
+  const long j0 = bound(std::floor((1 - uv_hi.y) * GH - 0.5)) - 1, j1 = bound(std::ceil((1 - uv_lo.y) * GH - 0.5)) + 1;
   const double margin = 1.5 * std::max(1.0 / GW, 1.0 / GH);
   const double area2 = std::abs(det);
   const double altitude[3] = {area2 / glm::length(uv[2] - uv[1]), area2 / glm::length(uv[0] - uv[2]),
                               area2 / glm::length(uv[1] - uv[0])};
-  const auto& visible = fb.visible_source();
   Sampler bilinear(Filter::Bilinear, 1);
   MipMap finest;
   finest.levels.push_back(&texture);
+  const long mi = long(m);
   // Memory: the texture is read in 4×4-texel tiles, one line each; a unit streams a
-  // triangle's texels row by row, so each tile row costs its span of tiles.
+  // triangle's texels row by row with a buffer of one row of tiles, so each tile row
+  // costs its span of tiles.
   auto floor_div = [](long a, long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
-  const long tile_row0 = floor_div(floor_div(j0, m), 4);
-  std::vector<std::pair<long, long>> tile_span(size_t(floor_div(floor_div(j1, m), 4) - tile_row0 + 1), {1, 0});
+  const long tile_row0 = floor_div(floor_div(j0, mi), 4);
+  std::vector<std::pair<long, long>> tile_span(size_t(floor_div(floor_div(j1, mi), 4) - tile_row0 + 1), {1, 0});
+  const float ax[3] = {float(A_x.x), float(A_x.y), float(A_x.w)}, ay[3] = {float(A_y.x), float(A_y.y), float(A_y.w)};
+  const float origin[3] = {float(a0.x), float(a0.y), float(a0.w)};
   for (long j = j0; j <= j1; ++j)
     for (long i = i0; i <= i1; ++i) {
       const double u = (double(i) + 0.5) / GW, v = 1 - (double(j) + 0.5) / GH;
-      const double b1 = ((u - uv[0].x) * t2.y - (v - uv[0].y) * t2.x) / det;
-      const double b2 = ((v - uv[0].y) * t1.x - (u - uv[0].x) * t1.y) / det;
+      const double du = u - uv[0].x, dv = v - uv[0].y;
+      const double b1 = (du * t2.y - dv * t2.x) / det;
+      const double b2 = (dv * t1.x - du * t1.y) / det;
       const double b0 = 1 - b1 - b2;
+      ops_ += kOpsInsideTest;
       if (b0 * altitude[0] < -margin || b1 * altitude[1] < -margin || b2 * altitude[2] < -margin) continue;
-      // Back to the screen: (x', y') from uv, then M*; behind the eye: nothing to splat.
-      const float xr = float(origin.x + along_u.x * u + along_v.x * v);
-      const float yr = float(origin.y + along_u.y * u + along_v.y * v);
-      const float cx = float(A_x.x) * xr + float(A_y.x) * yr + float(a0.x);
-      const float cy = float(A_x.y) * xr + float(A_y.y) * yr + float(a0.y);
-      const float cw = float(A_x.w) * xr + float(A_y.w) * yr + float(a0.w);
+      // Back to the screen: (x', y') − A from uv, then M*; behind the eye: nothing to splat.
+      ops_ += kOpsProjection;
+      const float xr = float(along_u.x * du + along_v.x * dv), yr = float(along_u.y * du + along_v.y * dv);
+      const float cx = ax[0] * xr + ay[0] * yr + origin[0];
+      const float cy = ax[1] * xr + ay[1] * yr + origin[1];
+      const float cw = ax[2] * xr + ay[2] * yr + origin[2];
       if (!(cw > 1e-6f)) continue;
       const float inv_w = 1.0f / cw;
       const float x = (cx * inv_w * 0.5f + 0.5f) * float(width) - 0.5f;  // pixel centres at +½
@@ -198,13 +227,13 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
       if (!(x > -1.0f && y > -1.0f && x < float(width) && y < float(height))) continue;  // off the frame
       ++texels_;
       ops_ += kOpsPerTexel;
-      auto& span = tile_span[size_t(floor_div(floor_div(j, m), 4) - tile_row0)];
-      const long tile = floor_div(floor_div(i, m), 4);
+      auto& span = tile_span[size_t(floor_div(floor_div(j, mi), 4) - tile_row0)];
+      const long tile = floor_div(floor_div(i, mi), 4);
       if (span.first > span.second) span = {tile, tile};
       else span.first = std::min(span.first, tile), span.second = std::max(span.second, tile);
       // The sample's colour: the texel of the level (or, magnified, bilinear on level 0).
       float colour[3];
-      if (m == 1) {
+      if (mi == 1) {
         int tx = int(((i % tex.width) + tex.width) % tex.width), ty = int(((j % tex.height) + tex.height) % tex.height);
         if (tex.wrap == core::Wrap::Clamp)
           tx = int(std::clamp<long>(i, 0, tex.width - 1)), ty = int(std::clamp<long>(j, 0, tex.height - 1));
@@ -212,8 +241,10 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
         colour[0] = c.r, colour[1] = c.g, colour[2] = c.b;
       } else {
         Ops sampler_ops;
-        bilinear.sample(finest, float(u), float(v), 0, 0, 0, 0, colour, sampler_ops);
-        sampler_ops.line = 0;  // lines: counted by tile rows below
+        const bool repeat = texture.wrap == core::Wrap::Repeat;  // whole periods off in double
+        bilinear.sample(finest, float(repeat ? u - std::floor(u) : u), float(repeat ? v - std::floor(v) : v), 0, 0, 0, 0,
+                        colour, sampler_ops);
+        sampler_ops.line = 0;  // lines: counted by tile rows
         ops_ += sampler_ops;
         ops_.fetch -= 1;       // counted in kOpsPerTexel
       }
@@ -225,6 +256,11 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
       const int py[4] = {int(fy0), int(fy0) + 1, int(fy0), int(fy0) + 1};
       weight_sum_error_ =
           std::max(weight_sum_error_, std::abs(double(weight[0] + weight[1] + weight[2] + weight[3]) - 1.0));
+      // Splat units own interleaved 4×4 pixel tiles; a texel goes to the unit of its first
+      // pixel, and a splat into another unit's tile is a write across units (counted).
+      const int owner = (((px[0] + 4) >> 2) + ((py[0] + 4) >> 2)) % units_;
+      ++unit_texels_[size_t(owner)];
+      ++unit_round_robin_[size_t(texels_ % uint64_t(units_))];
       for (int k = 0; k < 4; ++k) {
         if (px[k] < 0 || py[k] < 0 || px[k] >= width || py[k] >= height || weight[k] <= 0) continue;
         const size_t at = size_t(py[k]) * size_t(width) + size_t(px[k]);
@@ -233,11 +269,8 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
         accumulated_[at * 4 + 3] += double(weight[k]);
         ++splats_;
         ops_ += kOpsPerAccumulation;
+        if ((((px[k] + 4) >> 2) + ((py[k] + 4) >> 2)) % units_ != owner) ++cross_unit_splats_;
       }
-      // Splat units own interleaved 4×4 pixel tiles (by the sample's first pixel).
-      const int pixel_tile = ((int(fx0) + 4) >> 2) + ((int(fy0) + 4) >> 2);
-      ++unit_texels_[size_t(pixel_tile % units_)];
-      ++unit_round_robin_[size_t(texels_ % uint64_t(units_))];
     }
   for (const auto& span : tile_span)
     if (span.first <= span.second) ops_.line += uint64_t(span.second - span.first + 1);
@@ -258,6 +291,8 @@ nlohmann::json TexelProjectKernel::stats() const {
           {"covered_pixels", covered_},
           {"holes", holes_},
           {"weight_sum_error", weight_sum_error_},
+          {"budget_limited_polygons", budget_limited_},
+          {"cross_unit_splats", cross_unit_splats_},
           {"units", units_},
           {"unit_texels", unit_texels_},
           {"busiest_unit_texels", busiest},

@@ -52,8 +52,9 @@ class TexelProjectKernel {
   void run(FramebufferKernel& fb);
 
   const Ops& ops() const { return ops_; }
-  // Cycles of the pass at II 1: the busiest splat unit (units own interleaved 4×4
-  // pixel tiles, so they never write the same pixel), then the resolve, spread likewise.
+  // Cycles of the pass at II 1: the busiest splat unit (units own interleaved 4×4 pixel
+  // tiles; a texel goes to the owner of its first pixel, and its splats into neighbouring
+  // tiles are writes across units, counted), then the resolve, spread likewise.
   uint64_t cycles() const { return cycles_; }
   nlohmann::json stats() const;
 
@@ -66,11 +67,16 @@ class TexelProjectKernel {
   // Per texel: its four weights' sum minus 1, largest magnitude seen (should be ~1e-7).
   double weight_sum_error() const { return weight_sum_error_; }
 
-  // Per texel: its position in the rotated plane from uv (4 mul, 4 add), M*·(x', y', z', 1)
-  // with z' folded (6 mul, 6 add for x, y, w), the perspective division (1 div, 2 mul),
-  // fractions (4 add), the four weights (4 mul, 4 add); per accepted pixel, Σ s·c and
-  // Σ s (3 mul, 4 add).
-  static constexpr Ops kOpsPerTexel{/*add*/ 18, /*mul*/ 16, /*div*/ 1, 0, 0, 0, /*fetch*/ 1};
+  // Per candidate sample of the traversal: its uv (2 mul, 2 add) and the inside test
+  // (barycentrics: 4 mul, 5 add, 2 div; three distances to the edges: 3 mul, 3 compares).
+  static constexpr Ops kOpsInsideTest{/*add*/ 7, /*mul*/ 9, /*div*/ 2};
+  // Per sample inside: its position in the rotated plane from uv (4 mul, 2 add), M* on it
+  // (6 mul, 6 add for clip x, y, w: A's clip position is the offset).
+  static constexpr Ops kOpsProjection{/*add*/ 8, /*mul*/ 10};
+  // Per texel on the frame: the perspective division (1 div, 2 mul), the viewport
+  // (2 mul, 4 add), fractions (4 add), the four weights (4 mul, 4 add), its fetch; per
+  // accepted pixel, Σ s·c and Σ s (3 mul, 4 add).
+  static constexpr Ops kOpsPerTexel{/*add*/ 12, /*mul*/ 8, /*div*/ 1, 0, 0, 0, /*fetch*/ 1};
   static constexpr Ops kOpsPerAccumulation{/*add*/ 4, /*mul*/ 3};
   // Per covered pixel: the resolve (1 div, 3 mul) and the composite tex ⊙ D + S (3 mul, 3 add).
   static constexpr Ops kOpsPerPixel{/*add*/ 3, /*mul*/ 6, /*div*/ 1};
@@ -87,7 +93,7 @@ class TexelProjectKernel {
   std::vector<uint64_t> unit_texels_, unit_round_robin_;
   Ops ops_;
   uint64_t polygons_ = 0, lod_computations_ = 0, texels_ = 0, splats_ = 0, covered_ = 0, holes_ = 0;
-  uint64_t cycles_ = 0, oversampled_ = 0;
+  uint64_t cycles_ = 0, oversampled_ = 0, budget_limited_ = 0, cross_unit_splats_ = 0;
   double weight_sum_error_ = 0;
 };
 
