@@ -205,18 +205,33 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
   std::vector<std::pair<long, long>> tile_span(size_t(floor_div(floor_div(j1, mi), 4) - tile_row0 + 1), {1, 0});
   const float ax[3] = {float(A_x.x), float(A_x.y), float(A_x.w)}, ay[3] = {float(A_y.x), float(A_y.y), float(A_y.w)};
   const float origin[3] = {float(a0.x), float(a0.y), float(a0.w)};
-  for (long j = j0; j <= j1; ++j)
-    for (long i = i0; i <= i1; ++i) {
-      const double u = (double(i) + 0.5) / GW, v = 1 - (double(j) + 0.5) / GH;
-      const double du = u - uv[0].x, dv = v - uv[0].y;
-      const double b1 = (du * t2.y - dv * t2.x) / det;
-      const double b2 = (dv * t1.x - du * t1.y) / det;
-      const double b0 = 1 - b1 - b2;
-      ops_ += kOpsInsideTest;
-      if (b0 * altitude[0] < -margin || b1 * altitude[1] < -margin || b2 * altitude[2] < -margin) continue;
-      // Back to the screen: (x', y') − A from uv, then M*; behind the eye: nothing to splat.
+  // The traversal walks rows of samples; on each row the three edges (moved out by the
+  // margin) bound the run of samples inside, b_k(u) · altitude_k ≥ −margin with b_k
+  // affine in u, like a scanline rasterizer's spans.
+  const double slope[3] = {-(t2.y - t1.y) / det, t2.y / det, -t1.y / det};  // ∂b_k/∂u
+  for (long j = j0; j <= j1; ++j) {
+    const double v = 1 - (double(j) + 0.5) / GH, dv = v - uv[0].y;
+    const double at_u0[3] = {1 - (-dv * t2.x + dv * t1.x) / det, -dv * t2.x / det, dv * t1.x / det};  // b_k at u = u0
+    double u_min = -1e300, u_max = 1e300;
+    for (int k = 0; k < 3; ++k) {
+      const double lowest = -margin / altitude[k];
+      if (slope[k] > 0) u_min = std::max(u_min, uv[0].x + (lowest - at_u0[k]) / slope[k]);
+      else if (slope[k] < 0) u_max = std::min(u_max, uv[0].x + (lowest - at_u0[k]) / slope[k]);
+      else if (at_u0[k] < lowest) u_max = -1e300;
+    }
+    ops_ += kOpsPerRow;
+    if (!(u_min <= u_max)) continue;
+    const long first = std::max(i0, bound(std::ceil(u_min * GW - 0.5))), end = std::min(i1, bound(std::floor(u_max * GW - 0.5)));
+    // (x', y') − A at the run's first sample, then a constant step per sample.
+    const double du_first = (double(first) + 0.5) / GW - uv[0].x;
+    float xr = float(along_u.x * du_first + along_v.x * dv), yr = float(along_u.y * du_first + along_v.y * dv);
+    const float step_x = float(along_u.x / GW), step_y = float(along_u.y / GW);
+    ops_ += Ops{/*add*/ 3, /*mul*/ 6, /*div*/ 2};
+    for (long i = first; i <= end; ++i, xr += step_x, yr += step_y) {
+      const double u = (double(i) + 0.5) / GW;
+      // Back to the screen: (x', y') − A (stepped along the row: 2 add), then M*; behind
+      // the eye: nothing to splat.
       ops_ += kOpsProjection;
-      const float xr = float(along_u.x * du + along_v.x * dv), yr = float(along_u.y * du + along_v.y * dv);
       const float cx = ax[0] * xr + ay[0] * yr + origin[0];
       const float cy = ax[1] * xr + ay[1] * yr + origin[1];
       const float cw = ax[2] * xr + ay[2] * yr + origin[2];
@@ -272,6 +287,7 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
         if ((((px[k] + 4) >> 2) + ((py[k] + 4) >> 2)) % units_ != owner) ++cross_unit_splats_;
       }
     }
+  }
   for (const auto& span : tile_span)
     if (span.first <= span.second) ops_.line += uint64_t(span.second - span.first + 1);
 }

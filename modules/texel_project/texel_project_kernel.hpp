@@ -67,12 +67,12 @@ class TexelProjectKernel {
   // Per texel: its four weights' sum minus 1, largest magnitude seen (should be ~1e-7).
   double weight_sum_error() const { return weight_sum_error_; }
 
-  // Per candidate sample of the traversal: its uv (2 mul, 2 add) and the inside test
-  // (barycentrics: 4 mul, 5 add, 2 div; three distances to the edges: 3 mul, 3 compares).
-  static constexpr Ops kOpsInsideTest{/*add*/ 7, /*mul*/ 9, /*div*/ 2};
-  // Per sample inside: its position in the rotated plane from uv (4 mul, 2 add), M* on it
-  // (6 mul, 6 add for clip x, y, w: A's clip position is the offset).
-  static constexpr Ops kOpsProjection{/*add*/ 8, /*mul*/ 10};
+  // Per row of the traversal: v, and the run of samples inside from the three edges
+  // (per edge: its barycentric at u0, the bound: 3 mul, 3 add, 1 div), its ends.
+  static constexpr Ops kOpsPerRow{/*add*/ 13, /*mul*/ 12, /*div*/ 3};
+  // Per sample inside: its position in the rotated plane, a step along the row (2 add),
+  // M* on it (6 mul, 6 add for clip x, y, w: A's clip position is the offset).
+  static constexpr Ops kOpsProjection{/*add*/ 8, /*mul*/ 6};
   // Per texel on the frame: the perspective division (1 div, 2 mul), the viewport
   // (2 mul, 4 add), fractions (4 add), the four weights (4 mul, 4 add), its fetch; per
   // accepted pixel, Σ s·c and Σ s (3 mul, 4 add).
