@@ -11,7 +11,7 @@ namespace app {
 
 Command add_compare_command(CLI::App& app) {
   struct Options {
-    std::string a, b, diff;
+    std::string a, b, diff, images;
     core::CompareOptions compare;
     bool json = false;
   };
@@ -37,6 +37,8 @@ Command add_compare_command(CLI::App& app) {
       ->check(threshold);
   cmd->add_option("--diff", opt->diff, "write |A - B| per channel to this EXR");
   cmd->add_flag("--json", opt->json, "print the metrics as JSON");
+  cmd->add_option("--images", opt->images,
+                  "write PREFIX-new.png, -reference.png, -diff.png (|A-B| x16) and -heat.png (error heat map)");
   return {cmd, [opt]() {
             const core::Frame a = core::read_exr(opt->a), b = core::read_exr(opt->b);
             const core::CompareResult r = core::compare_frames(a, b, opt->compare);
@@ -51,6 +53,8 @@ Command add_compare_command(CLI::App& app) {
             }
             if (!opt->diff.empty() && r.problem.empty())
               write_frame(core::difference_frame(a, b, r), opt->diff, "");
+            if (!opt->images.empty() && r.problem.empty())
+              core::write_comparison_images(opt->images, a, b, opt->compare.fail);
             return r.pass ? 0 : 2;
           }};
 }

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
+
+#include <stb_image_write.h>
 
 namespace core {
 
@@ -110,6 +113,40 @@ Frame difference_frame(const Frame& a, const Frame& b, const CompareResult& resu
       for (size_t i = 0; i < out.size(); ++i) out[i] = float(difference(va[i], vb[i]));
     }
   return d;
+}
+
+void write_comparison_images(const std::string& prefix, const Frame& a, const Frame& b, double fail) {
+  write_png_preview(prefix + "-new.png", a);
+  write_png_preview(prefix + "-reference.png", b);
+  const char* names[3] = {"R", "G", "B"};
+  const size_t n = a.pixel_count();
+  std::vector<unsigned char> diff(n * 3), heat(n * 3);
+  // The ramp's colours at 1e-6, 1e-5, …, 1e-1.
+  const double ramp[6][3] = {{0, 0, 0.5}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}};
+  for (size_t i = 0; i < n; ++i) {
+    double worst = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double e = a.find(names[k]) && b.find(names[k]) ? difference(a.at(names[k])[i], b.at(names[k])[i]) : 0.0;
+      worst = std::max(worst, e);
+      diff[i * 3 + size_t(k)] = static_cast<unsigned char>(std::lround(std::clamp(e * 16.0, 0.0, 1.0) * 255.0));
+    }
+    double colour[3] = {0, 0, 0};
+    if (worst >= 1e-6 || worst > fail) {
+      const double t = std::clamp(std::log10(std::max(worst, 1e-6)) + 6.0, 0.0, 5.0);  // 0 … 5
+      const int lo = std::min(4, int(t));
+      const double f = t - lo;
+      for (int k = 0; k < 3; ++k) colour[k] = ramp[lo][k] + (ramp[lo + 1][k] - ramp[lo][k]) * f;
+    }
+    for (int k = 0; k < 3; ++k) heat[i * 3 + size_t(k)] = static_cast<unsigned char>(std::lround(colour[k] * 255.0));
+  }
+  auto write = [&](const std::string& path, const std::vector<unsigned char>& pixels) {
+    write_atomically(path, [&](const std::string& tmp) {
+      if (!stbi_write_png(tmp.c_str(), a.width, a.height, 3, pixels.data(), a.width * 3))
+        throw std::runtime_error(path + ": cannot write the PNG");
+    });
+  };
+  write(prefix + "-diff.png", diff);
+  write(prefix + "-heat.png", heat);
 }
 
 nlohmann::json json_figure(double x) {

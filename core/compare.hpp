@@ -52,4 +52,10 @@ CompareResult compare_frames(const Frame& a, const Frame& b, const CompareOption
 // |A − B| for every channel of the compared layers.
 Frame difference_frame(const Frame& a, const Frame& b, const CompareResult& result);
 
+// The pictures of a regression report, 8-bit PNGs: `prefix`-new.png and -reference.png
+// (sRGB previews of A and B), -diff.png (|A − B| of R, G, B times 16) and -heat.png
+// (each pixel's largest colour error on a logarithmic ramp: black below 1e-6, then
+// blue, cyan, green, yellow, red at 1e-1 and above; pixels over `fail` are never black).
+void write_comparison_images(const std::string& prefix, const Frame& a, const Frame& b, double fail);
+
 }  // namespace core

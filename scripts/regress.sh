@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# Golden-image regression with an HTML report: every golden scene under each of its
+# configurations (golden/<scene>/golden.json), through the SystemC pipeline, compared per
+# layer and per block's cycles with what was accepted, and with the golden model.
+# Writes out/report/index.html (failures first). Exit 0 when everything passes.
+# REGEN_GOLDEN=1 rewrites only what fails or is missing, and prints what changed (never
+# under CI). ctest -L golden runs the same checks as tests (docs/regression.md).
+# Usage: scripts/regress.sh [--scene NAME ...]
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+"$root/scripts/setup.sh"
+"$root/scripts/build.sh" >/dev/null
+out=$root/out/report
+rm -rf "$out"
+mkdir -p "$out"
+exec python3 "$root/scripts/regress.py" "$root/build/app/shadetlm" "$root" "$out" "$@"
