@@ -1,12 +1,15 @@
 // shadetlm render [SCENE] [-o frame.exr] [--preview frame.png] [--stats stats.json]
 //                 [--compare-reference] [--engine systemc|loop] [--set key=value ...]
 #include <chrono>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+
+#include <unistd.h>
 
 #include "app/commands.hpp"
 #include "core/compare.hpp"
@@ -17,6 +20,31 @@
 namespace app {
 
 namespace {
+
+// A one-line progress bar on stderr, drawn only when stderr is a terminal, at most ten
+// times a second, and only once the run has taken half a second (short renders stay quiet).
+class ProgressBar {
+ public:
+  explicit ProgressBar(const char* label) : label_(label), enabled_(isatty(fileno(stderr)) != 0) {}
+  bool enabled() const { return enabled_; }
+  void show(double share) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - start_ < std::chrono::milliseconds(500) || now - last_ < std::chrono::milliseconds(100)) return;
+    last_ = now;
+    const int filled = int(std::lround(std::clamp(share, 0.0, 1.0) * 30));
+    std::fprintf(stderr, "\r%s [%s%s] %3d %%", label_, std::string(size_t(filled), '#').c_str(),
+                 std::string(size_t(30 - filled), ' ').c_str(), int(std::lround(share * 100)));
+    drawn_ = true;
+  }
+  void done() {
+    if (drawn_) std::fprintf(stderr, "\r%s\r", std::string(50, ' ').c_str());
+  }
+
+ private:
+  const char* label_;
+  bool enabled_, drawn_ = false;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
+};
 // Error of the pipeline's frame against the golden model's, per layer, and the
 // pixels whose coverage differs.
 nlohmann::json error_against_reference(const core::Frame& frame, const core::Scene& scene, double* reference_s) {
@@ -124,8 +152,12 @@ Command add_render_command(CLI::App& app) {
               for (const std::string& path : {inspect.vcd, gtkw, inspect.timeline})
                 if (!path.empty()) core::remove_quietly(path);
             };
-            modules::RenderResult r =
-                opt->engine == "loop" ? modules::render_loop(scene) : modules::render_systemc(scene, inspect);
+            // A progress bar on stderr, only when it is a terminal (and the render is long).
+            ProgressBar bar("render");
+            if (bar.enabled()) inspect.progress = [&](double share) { bar.show(share); };
+            modules::RenderResult r = opt->engine == "loop" ? modules::render_loop(scene, inspect)
+                                                            : modules::render_systemc(scene, inspect);
+            bar.done();
             nlohmann::json stats = r.stats_json();
             stats["scene"] = scene.file;
             stats["config"] = scene.pipeline.resolved();

@@ -178,9 +178,10 @@ class Top : public sc_core::sc_module {
 
 }  // namespace
 
-RenderResult render_loop(const core::Scene& scene) {
+RenderResult render_loop(const core::Scene& scene, const Inspect& inspect) {
   const Options o = read_options(scene);
   Kernels k(scene, o);
+  if (inspect.progress) k.setup.set_progress(inspect.progress);
   RenderResult r;
   r.engine = "loop";
   r.clock_mhz = o.clock_mhz;
@@ -228,6 +229,7 @@ RenderResult render_loop(const core::Scene& scene) {
 RenderResult render_systemc(const core::Scene& scene, const Inspect& inspect) {
   const Options o = read_options(scene);
   Kernels k(scene, o);
+  if (inspect.progress) k.setup.set_progress(inspect.progress);
   Top top("shadetlm", k, o, inspect, scene.camera.width, scene.camera.height);
   // One quantum of 10 000 cycles: the source yields rarely, and never per pixel.
   tlm_utils::tlm_quantumkeeper::set_global_quantum(sc_core::sc_time(1e4 / o.clock_mhz, sc_core::SC_US));

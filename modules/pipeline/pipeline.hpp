@@ -87,6 +87,7 @@ struct Inspect {
   bool region_given = false;  // else the whole frame is traced
   std::string timeline;       // Chrome trace-event JSON
   uint64_t bin_cycles = 0;      // utilization histogram bin (0: not kept; it costs a little per packet)
+  std::function<void(double)> progress;  // share of the triangles set up, now and then (a progress bar)
 };
 
 struct RenderResult {
@@ -107,7 +108,7 @@ struct RenderResult {
   nlohmann::json stats_json() const;
 };
 
-RenderResult render_loop(const core::Scene& scene);
+RenderResult render_loop(const core::Scene& scene, const Inspect& inspect = {});
 // Elaborates and simulates the SystemC pipeline: SystemC elaborates once per process,
 // so call this at most once per process.
 RenderResult render_systemc(const core::Scene& scene, const Inspect& inspect = {});

@@ -10,6 +10,7 @@
 // the forward-difference radicand. In perspective mode the same is done for N/w and
 // 1/w. Vertex transformation, clipping and snapping follow core/coverage.hpp, the
 // convention shared with the golden model, and are not counted as setup operations.
+#include <functional>
 #include <vector>
 
 #include "modules/common/packet.hpp"
@@ -46,6 +47,8 @@ class SetupKernel {
   void run(Emit&& emit);
 
   const Ops& ops() const { return ops_; }
+  // Called with the share of the scene's triangles set up so far (0 … 1), every 1024.
+  void set_progress(std::function<void(double)> progress) { progress_ = std::move(progress); }
   uint64_t triangles_in() const { return triangles_in_; }
   uint64_t triangles_out() const { return triangles_out_; }
   // The point lights, in the order of TriangleSetup::l (slot k is light point_lights()[k]).
@@ -72,6 +75,7 @@ class SetupKernel {
   Ops ops_;
   uint64_t triangles_in_ = 0, triangles_out_ = 0;
   TriangleSetup current_;
+  std::function<void(double)> progress_;
   glm::dvec3 pu_{0}, pv_{0};      // of the current triangle (bump paths)
   glm::dmat3 to_object_{1.0};    // of the current object: world vectors into object space
 };
@@ -80,6 +84,8 @@ template <class Emit>
 void SetupKernel::run(Emit&& emit) {
   const int width = scene_.camera.width, height = scene_.camera.height;
   uint32_t id = 0, source = 0;
+  uint64_t total = 0;
+  for (const auto& object : scene_.objects) total += object.mesh.triangles.size();
   for (size_t o = 0; o < scene_.objects.size(); ++o) {
     const core::Object& object = scene_.objects[o];
     const core::Mesh mesh = core::to_world(object);
@@ -91,6 +97,7 @@ void SetupKernel::run(Emit&& emit) {
     for (const auto& t : mesh.triangles) {
       ++triangles_in_;
       current_.source = source++;
+      if (progress_ && (source & 1023) == 0) progress_(double(source) / double(total));
       const uint32_t idx[3] = {t.x, t.y, t.z};
       // A triangle with no area in space has no plane to interpolate on (the golden
       // model skips it too), even if snapping gives its screen image some area.
