@@ -16,6 +16,8 @@ packages=(
   valgrind            # scripts/bench.sh: instruction counts
   python3             # report scripts
 )
+# Packages a script needs beyond these (scripts/plot.sh: gnuplot-nox) come as arguments.
+packages+=("$@")
 
 missing=()
 for p in "${packages[@]}"; do
