@@ -38,7 +38,9 @@ class ProgressBar {
   }
   void done() {
     if (drawn_) std::fprintf(stderr, "\r%s\r", std::string(50, ' ').c_str());
+    drawn_ = false;
   }
+  ~ProgressBar() { done(); }  // also when the render throws: the message starts on a clean line
 
  private:
   const char* label_;

@@ -23,7 +23,8 @@ def run(scene, sets):
         cmd += ["--set", s]
     p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL)
     _, status, usage = os.wait4(p.pid, 0)
-    if status != 0:
+    p.returncode = os.waitstatus_to_exitcode(status)
+    if p.returncode != 0:
         sys.exit("render failed: " + " ".join(cmd))
     with open(stats) as f:
         s = json.load(f)
@@ -60,17 +61,19 @@ print("Fit: memory = %.1f MiB + %.1f bytes × pixels of the frame (R² = %.5f).\
 print("## Triangles (a sphere at 512²)\n")
 print("| triangles | covered pixels | wall time (s) | µs per triangle | peak memory (MiB) |")
 print("|---|---|---|---|---|")
-tris, times = [], []
+tris, times, mems = [], [], []
 sphere = os.path.join(ROOT, "golden/sphere/scene.json")
 for target in [1e3, 1e4, 1e5, 1e6]:
     segments = max(3, int(round((target / 2) ** 0.5 * 1.41)))
     rings = max(2, segments // 2)
     s, mem = run(sphere, ["camera.resolution=[512,512]", "objects.0.segments=%d" % segments, "objects.0.rings=%d" % rings])
     n = s["triangles"]["in"]
-    tris.append(n), times.append(s["wall_s"])
+    tris.append(n), times.append(s["wall_s"]), mems.append(mem)
     print("| %d | %d | %.4f | %.3f | %.1f |" % (n, s["pixels"]["shaded"], s["wall_s"], 1e6 * s["wall_s"] / n, mem))
 a, b, r2 = fit(tris, times)
 print("\nFit: time = %.4f s + %.3f µs × triangles (R² = %.5f)." % (a, b * 1e6, r2))
+a, b, r2 = fit(tris, mems)
+print("Fit: memory = %.1f MiB + %.1f bytes × triangles (R² = %.5f)." % (a, b * 1024 * 1024, r2))
 for name in os.listdir(TMP):
     os.remove(os.path.join(TMP, name))
 os.rmdir(TMP)

@@ -22,6 +22,8 @@ BIN, ROOT = sys.argv[1], sys.argv[2]
 shard, shards = 0, 1
 if "--shard" in sys.argv:
     shard, shards = (int(x) for x in sys.argv[sys.argv.index("--shard") + 1].split("/"))
+    if not 0 <= shard < shards:
+        sys.exit("sweep: --shard I/N needs 0 <= I < N")
 RESOLUTION = "[384,288]"  # large enough for wall times above the noise, small enough for the golden model
 OPS = ["add", "mul", "div", "sqrt", "rsqrt", "lut", "fetch", "line"]
 FORMATS = ["float32"]
@@ -56,7 +58,7 @@ def plan():
 
 
 def progress(done, total):
-    if not sys.stderr.isatty():
+    if not sys.stderr.isatty() or shards > 1:  # shards: sweep.sh draws one bar for all
         return
     filled = int(30 * done / max(1, total))
     sys.stderr.write("\rsweep [%s%s] %d/%d" % ("#" * filled, " " * (30 - filled), done, total))

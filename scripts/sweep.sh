@@ -12,9 +12,23 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=${1:-$(nproc)}
 out=$root/out/sweep
 mkdir -p "$out"
-rm -f "$out"/shard-*.csv
+rm -f "$out"/shard-*.csv "$out/sweep.csv"
+total=$(python3 "$root/scripts/sweep.py" "$root/build/app/shadetlm" "$root" --list)
+export SWEEP_ROOT=$root SWEEP_JOBS=$jobs SWEEP_OUT=$out
 seq 0 $((jobs - 1)) | xargs -P "$jobs" -I{} sh -c \
-  "python3 '$root/scripts/sweep.py' '$root/build/app/shadetlm' '$root' --shard {}/$jobs > '$out/shard-{}.csv'"
+  'python3 "$SWEEP_ROOT/scripts/sweep.py" "$SWEEP_ROOT/build/app/shadetlm" "$SWEEP_ROOT" --shard {}/$SWEEP_JOBS > "$SWEEP_OUT/shard-{}.csv"' &
+runs=$!
+# One progress bar for all shards, from their rows so far (only on a terminal).
+while kill -0 $runs 2>/dev/null; do
+  if [[ -t 2 ]]; then
+    done_rows=$(cat "$out"/shard-*.csv 2>/dev/null | grep -c '^[0-9]' || true)
+    filled=$((30 * done_rows / total))
+    printf '\rsweep [%-30s] %d/%d' "$(printf '%*s' $filled '' | tr ' ' '#')" "$done_rows" "$total" >&2
+  fi
+  sleep 0.5
+done
+[[ -t 2 ]] && printf '\r%60s\r' '' >&2
+wait $runs
 # One header, then every shard's rows in run order.
 { head -1 "$out/shard-0.csv"; tail -q -n +2 "$out"/shard-*.csv | sort -t, -k1,1n; } >"$out/sweep.csv"
 rm -f "$out"/shard-*.csv
