@@ -15,6 +15,8 @@ const std::vector<SettingSpec>& pipeline_settings() {
   static std::vector<SettingSpec> table = {
       {"clock_mhz", 500.0, {}, 1, 100000, "clock of every block, for simulated time"},
       {"number_format", "float32", {"float32"}, 0, 0, "arithmetic of the datapaths"},
+      {"elaborate", "needed", {"needed", "all"}, 0, 0,
+       "elaborate the blocks some material needs, or every block (to measure what skipping saves)"},
       {"normal_interp.mode", "perspective", {"affine", "perspective"}, 0, 0,
        "constant increments of N (affine) or of N/w and 1/w (perspective)"},
       {"normalize.mode", "exact", {"exact", "forward-difference", "rsqrt0", "rsqrt1", "rsqrt2"},

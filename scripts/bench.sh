@@ -47,6 +47,28 @@ count "benchmark scene at 480x270 (3 lights, texture)" "$scene" "[480,270]"
 count "golden/sphere at 960x720 (minimal Phong)" "$root/golden/sphere/scene.json" "[960,720]"
 count "golden/bump-sphere at 960x720 (bump-classic)" "$root/golden/bump-sphere/scene.json" "[960,720]"
 count "golden/bump-plane at 960x720 (bump-tangent)" "$root/golden/bump-plane/scene.json" "[960,720]"
+count "golden/texture-screen at 960x720 (EWA)" "$root/golden/texture-screen/scene.json" "[960,720]"
+count "golden/texture-object at 960x720 (texel_project)" "$root/golden/texture-object/scene.json" "[960,720]"
+
+echo
+echo "== each block's share of the run time (callgrind, inclusive, SystemC, benchmark scene at 480x270) =="
+valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.share" --toggle-collect="${render_fn[systemc]}" \
+  "$bin" render "$scene" -o "$tmp/f.exr" --set 'camera.resolution=[480,270]' >/dev/null 2>&1
+callgrind_annotate --inclusive=yes --threshold=100 "$tmp/cg.share" 2>/dev/null |
+  grep -E 'Kernel::(process|run)|Raster::b_transport|Setup::run' | grep -v '::{lambda' |
+  sed -E 's/^ *[0-9,]+ \( *([0-9.]+)%\).*modules::([A-Za-z]+)::.*/  \2 \1 %/' | sort -t' ' -k2 -u
+echo "  (inclusive: raster's b_transport contains the blocks after it, which it calls)"
+
+echo
+echo "== every block elaborated / only the ones the scene needs (golden/sphere at 960x720, instructions) =="
+for what in all needed; do
+  valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.$what" --toggle-collect="${render_fn[systemc]}" \
+    "$bin" render "$root/golden/sphere/scene.json" -o "$tmp/f.exr" --set 'camera.resolution=[960,720]' \
+    $([[ $what == all ]] && echo --set pipeline.elaborate=all) >/dev/null 2>&1
+done
+all=$(sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$tmp/cg.all")
+needed=$(sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$tmp/cg.needed")
+awk -v a="$all" -v b="$needed" 'BEGIN { printf "  %d / %d = %.4f (goal <= 1.05)\n", a, b, a / b }'
 
 echo
 echo "== the cost of tracing =="

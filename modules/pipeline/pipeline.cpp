@@ -30,6 +30,7 @@ Options read_options(const core::Scene& scene) {
   o.perspective = scene.pipeline.string("normal_interp.mode") == "perspective";
   o.normalize = parse_normalize_mode(scene.pipeline.string("normalize.mode"));
   o.clock_mhz = scene.pipeline.number("clock_mhz");
+  o.elaborate_all = scene.pipeline.string("elaborate") == "all";
   o.affine_bump_vectors = scene.pipeline.string("vector_interp.bump_vectors") == "affine";
   o.texture.filter = parse_filter(scene.pipeline.string("texture_fetch.filter"));
   o.texture.probes = scene.pipeline.integer("texture_fetch.probes");
@@ -48,13 +49,17 @@ Kernels::Kernels(const core::Scene& scene, const Options& o)
       raster(scene.camera.width, scene.camera.height),
       normalize(o.normalize),
       lighting(scene),
-      framebuffer(scene, TexelProjectKernel::needed(scene)) {
-  if (TexelProjectKernel::needed(scene)) texel_project.emplace(scene, o.splat_units);
-  if (BumpFetchKernel::needed(scene)) bump_fetch.emplace(scene, o.bump);
-  if (BumpPerturbKernel::needed(scene)) bump_perturb.emplace(o.perspective);
-  if (NormalMuxKernel::needed(scene)) normal_mux.emplace();
-  if (VectorInterpKernel::needed(scene)) vector_interp.emplace(scene, setup.point_lights(), o.affine_bump_vectors);
-  if (TextureFetchKernel::needed(scene)) texture_fetch.emplace(scene, o.texture);
+      framebuffer(scene, o.elaborate_all || TexelProjectKernel::needed(scene)) {
+  // Only the blocks some material needs — or all of them (pipeline.elaborate = all), to
+  // measure what the skipping saves.
+  const bool all = o.elaborate_all;
+  if (all || TexelProjectKernel::needed(scene)) texel_project.emplace(scene, o.splat_units);
+  if (all || BumpFetchKernel::needed(scene)) bump_fetch.emplace(scene, o.bump);
+  if (all || BumpPerturbKernel::needed(scene)) bump_perturb.emplace(o.perspective);
+  if (all || NormalMuxKernel::needed(scene)) normal_mux.emplace();
+  if (all || VectorInterpKernel::needed(scene))
+    vector_interp.emplace(scene, setup.point_lights(), o.affine_bump_vectors);
+  if (all || TextureFetchKernel::needed(scene)) texture_fetch.emplace(scene, o.texture);
 }
 
 namespace {
@@ -316,6 +321,8 @@ nlohmann::json RenderResult::stats_json() const {
   j["sim_time_s"] = double(frame_cycles) / (clock_mhz * 1e6);
   j["bottleneck"] = frame_cycles > 0 && bottleneck() ? nlohmann::json(bottleneck()->name) : nlohmann::json();
   j["precompute_s"] = precompute_s;
+  j["elaborated"] = nlohmann::json::array();
+  for (const auto& b : blocks) j["elaborated"].push_back(b.name);
   j["triangles"] = {{"in", triangles_in}, {"drawn", triangles_drawn}};
   j["pixels"] = {{"walked", pixels_walked}, {"hidden", pixels_hidden}, {"shaded", pixels_shaded}};
   j["blocks"] = nlohmann::json::object();

@@ -43,6 +43,7 @@ struct Options {
   bool perspective = true;
   NormalizeMode normalize = NormalizeMode::Exact;
   double clock_mhz = 500;
+  bool elaborate_all = false;  // pipeline.elaborate = all: every block, needed or not
   BumpFetchKernel::Options bump;
   TextureFetchKernel::Options texture;
   int splat_units = 4;  // texel_project.units
