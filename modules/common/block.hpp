@@ -131,11 +131,17 @@ class Stage : public sc_core::sc_module, public BlockInfo {
   Schedule& schedule() override { return schedule_; }
 
  private:
-  void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time&) {
+  void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
     SpanPacket& p = *reinterpret_cast<SpanPacket*>(trans.get_data_ptr());
     if (kernel_.bypass(p)) {
-      ++stats_.bypassed;  // through the bypass wire: no work, no cycles
-    } else if (!kTracing || (!tracer_ && !timeline_)) {  // nothing inspected: the fast path
+      // Through the bypass wire: no work, no cycles; the packet goes on with the time
+      // annotation it came with.
+      ++stats_.bypassed;
+      if (out.size() > 0) out->b_transport(trans, delay);
+      trans.set_response_status(tlm::TLM_OK_RESPONSE);
+      return;
+    }
+    if (!kTracing || (!tracer_ && !timeline_)) {  // nothing inspected: the fast path
       kernel_.process(p);
       ++stats_.packets;
       stats_.pixels += uint64_t(p.count);

@@ -16,14 +16,15 @@ class NormalMuxKernel {
  public:
   static bool needed(const core::Scene& scene);
 
+  // Packets whose normal is the interpolated one take the mux's other input: modelled as
+  // the bypass wire (no cycles); the fetched normal is selected for the others.
   void process(SpanPacket& p) {
-    if (!core::fetches_normal(p.tri->material->path)) return;
     for (int c = 0; c < 3; ++c)
       for (int i = 0; i < p.count; ++i) p.n[c][i] = p.bump[c][i];
   }
   const Ops& ops() const { return ops_; }
   uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }
-  bool bypass(const SpanPacket&) const { return false; }
+  bool bypass(const SpanPacket& p) const { return !core::fetches_normal(p.tri->material->path); }
 
   // Waveforms: which input is selected (1: the fetched normal), and the normal out.
   void set_capture(bool) {}

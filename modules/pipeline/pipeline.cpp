@@ -49,7 +49,7 @@ Kernels::Kernels(const core::Scene& scene, const Options& o)
       raster(scene.camera.width, scene.camera.height),
       normalize(o.normalize),
       lighting(scene),
-      framebuffer(scene, o.elaborate_all || TexelProjectKernel::needed(scene)) {
+      framebuffer(scene, TexelProjectKernel::needed(scene)) {
   // Only the blocks some material needs — or all of them (pipeline.elaborate = all), to
   // measure what the skipping saves.
   const bool all = o.elaborate_all;
@@ -196,7 +196,7 @@ RenderResult render_loop(const core::Scene& scene, const Inspect& inspect) {
       if (!k.normal_interp.bypass(p)) k.normal_interp.process(p);
       if (k.bump_fetch && !k.bump_fetch->bypass(p)) k.bump_fetch->process(p);
       if (k.bump_perturb && !k.bump_perturb->bypass(p)) k.bump_perturb->process(p);
-      if (k.normal_mux) k.normal_mux->process(p);
+      if (k.normal_mux && !k.normal_mux->bypass(p)) k.normal_mux->process(p);
       k.normalize.process(p);
       if (k.vector_interp && !k.vector_interp->bypass(p)) k.vector_interp->process(p);
       if (k.texture_fetch && !k.texture_fetch->bypass(p)) k.texture_fetch->process(p);

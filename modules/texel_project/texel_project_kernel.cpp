@@ -46,6 +46,7 @@ TexelProjectKernel::TexelProjectKernel(const core::Scene& scene, int units)
 }
 
 void TexelProjectKernel::run(FramebufferKernel& fb) {
+  if (!needed(scene_)) return;  // elaborated for all (pipeline.elaborate = all), nothing to do
   const int width = scene_.camera.width, height = scene_.camera.height;
   accumulated_.assign(size_t(width) * size_t(height) * 4, 0.0);
   uint32_t source = 0;
