@@ -18,8 +18,12 @@ shift || true
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-echo "== wall time, one run =="
+echo "== wall time, one run each: SystemC / plain loop, 1920x1080, per path (goal <= 1.10) =="
 "$bin" bench "$scene" "$@"
+if [[ $scene == "$root/scenes/bench-1080p.json" ]]; then
+  "$bin" bench "$root/scenes/bench-bump-1080p.json" "$@"
+  "$bin" bench "$root/scenes/bench-texture-1080p.json" "$@"
+fi
 
 echo
 echo "== instructions per shaded pixel (callgrind) =="
@@ -27,7 +31,7 @@ echo "== instructions per shaded pixel (callgrind) =="
 # lambdas (render_loop(...)::{lambda...}), and callgrind toggles collection off again on
 # entering them.
 declare -A render_fn=([systemc]='modules::render_systemc(core::Scene const&, modules::Inspect const&)'
-                      [loop]='modules::render_loop(core::Scene const&)')
+                      [loop]='modules::render_loop(core::Scene const&, modules::Inspect const&)')
 count() {  # count LABEL SCENE RESOLUTION
   local label=$1 file=$2 res=$3
   for engine in systemc loop; do
@@ -42,6 +46,8 @@ count() {  # count LABEL SCENE RESOLUTION
 }
 extra=("$@")
 count "benchmark scene at 480x270 (3 lights, texture)" "$scene" "[480,270]"
+count "bump benchmark scene at 480x270 (all four bump paths)" "$root/scenes/bench-bump-1080p.json" "[480,270]"
+count "texturing benchmark at 480x270 (texel_project, anisotropic)" "$root/scenes/bench-texture-1080p.json" "[480,270]"
 # The leanest Phong configuration: one directional light, viewer at infinity, no
 # texture (vector_interp and texture_fetch are not elaborated).
 count "golden/sphere at 960x720 (minimal Phong)" "$root/golden/sphere/scene.json" "[960,720]"
