@@ -41,7 +41,7 @@ count() {  # count LABEL SCENE RESOLUTION
     ir=$(sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$tmp/cg.$engine")
     pixels=$(sed -n 's/.* \([0-9]*\) shaded pixels.*/\1/p' "$tmp/out.$engine")
     awk -v l="$label" -v e=$engine -v ir="$ir" -v px="$pixels" \
-      'BEGIN { printf "  %-44s %-8s %11d instructions / %7d shaded pixels = %6.1f\n", l, e, ir, px, ir / px }'
+      'BEGIN { printf "  %-44s %-8s %11.0f instructions / %7d shaded pixels = %6.1f\n", l, e, ir, px, ir / px }'
   done
 }
 extra=("$@")
