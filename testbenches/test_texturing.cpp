@@ -35,13 +35,6 @@ const nlohmann::json& details(const modules::RenderResult& r, const std::string&
   return none;
 }
 
-bool finite(const core::Frame& f) {
-  for (const auto& c : f.channels)
-    for (float v : c.values)
-      if (std::isnan(v)) return false;
-  return true;
-}
-
 }  // namespace
 
 TEST_CASE("the rotation of (1)-(2) lays every triangle parallel to XY, d = 0 included", "[texturing]") {
@@ -75,7 +68,7 @@ TEST_CASE("texel_project: no holes, weights that sum to 1, one LOD per polygon",
     CHECK(d["weight_sum_error"].get<double>() < 1e-6);
     CHECK(d["lod_computations"].get<uint64_t>() == d["polygons"].get<uint64_t>());
     CHECK(d["polygons"].get<uint64_t>() <= 32);  // 4 × 4 quads
-    CHECK(finite(r.frame));
+    CHECK(test::no_nan(r.frame));
   }
   // The screen-space filters compute a LOD per pixel.
   const modules::RenderResult s = modules::render_loop(core::load_scene_text(plane_scene("texture-screen", 30), "s", "."));
@@ -139,8 +132,8 @@ TEST_CASE("texturing with hostile geometry and textures: edge-on, across the nea
     INFO(c.name);
     const core::Scene scene = core::load_scene_text(c.text, "h", ".", c.sets);
     const modules::RenderResult r = modules::render_loop(scene);
-    CHECK(finite(r.frame));
-    CHECK(finite(reference::to_frame(reference::render(scene))));
+    CHECK(test::no_nan(r.frame));
+    CHECK(test::no_nan(reference::to_frame(reference::render(scene))));
     const nlohmann::json& d = details(r, "texel_project");
     if (!d.is_null()) CHECK(d["holes"].get<uint64_t>() == 0);
   }

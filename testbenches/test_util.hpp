@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "core/frame.hpp"
 #include "core/input_error.hpp"
 #include "core/scene.hpp"
 
@@ -20,6 +21,14 @@ inline std::filesystem::path temp_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// True when no channel of the frame holds a NaN.
+inline bool no_nan(const core::Frame& f) {
+  for (const auto& c : f.channels)
+    for (float v : c.values)
+      if (v != v) return false;
+  return true;
 }
 
 // The InputError a scene text raises, or an empty string when it loads.

@@ -24,9 +24,7 @@ namespace modules {
 
 class BumpFetchKernel {
  public:
-  struct Options {
-    Filter filter = Filter::Trilinear;
-    int probes = 4;
+  struct Options : FilterSetting {
     bool renormalize_mips = true;
   };
   BumpFetchKernel(const core::Scene& scene, const Options& options);

@@ -31,6 +31,12 @@ namespace modules {
 enum class Filter { Nearest, Bilinear, Trilinear, Anisotropic, Ewa };
 Filter parse_filter(const std::string& name);
 
+// The filter a texture unit applies (pipeline.<block>.filter and .probes).
+struct FilterSetting {
+  Filter filter = Filter::Trilinear;
+  int probes = 4;
+};
+
 // A texture and its mip levels, finest first.
 struct MipMap {
   std::vector<const core::Texture*> levels;

@@ -18,10 +18,7 @@ namespace modules {
 
 class TextureFetchKernel {
  public:
-  struct Options {
-    Filter filter = Filter::Trilinear;
-    int probes = 4;
-  };
+  using Options = FilterSetting;
   TextureFetchKernel(const core::Scene& scene, const Options& options);
   static bool needed(const core::Scene& scene);
 
