@@ -314,8 +314,11 @@ Scene load_scene_text(const std::string& text, const std::string& name, const st
     c.target = position(r, "target", std::nullopt);
     c.up = r.vec3("up", glm::dvec3(0, 1, 0));
     c.fov_y_deg = r.number("fov_y", 45.0, 1e-3, 179.0);
-    // 8192² keeps the golden model's double-precision image within a few GB.
-    glm::ivec2 res = r.ivec2("resolution", std::nullopt, 1, 8192);
+    // Sides up to 16384 (the stress scenes' longest spans); at most 8192² pixels in all,
+    // which keeps the golden model's double-precision image within a few GB.
+    glm::ivec2 res = r.ivec2("resolution", std::nullopt, 1, 16384);
+    if (int64_t(res.x) * int64_t(res.y) > int64_t(8192) * 8192)
+      r.fail("resolution", "at most 8192 × 8192 pixels in all, got " + std::to_string(res.x) + " × " + std::to_string(res.y));
     c.width = res.x;
     c.height = res.y;
     c.near = r.number("near", 0.1, 1e-9, 1e12);

@@ -235,7 +235,8 @@ TEST_CASE("magnitudes that would overflow or underflow are rejected", "[scene][b
         "objects.0.transform.translate");
   CHECK(error_of(minimal(), {"objects.0.radius=1e9"}).first == "objects.0.radius");
   CHECK(error_of(minimal(), {"camera.position=[0,0,1e9]"}).first == "camera.position");
-  CHECK(error_of(minimal(), {"camera.resolution=[16384,16384]"}).first == "camera.resolution.0");
+  CHECK(error_of(minimal(), {"camera.resolution=[32768,16]"}).first == "camera.resolution.0");
+  CHECK(error_of(minimal(), {"camera.resolution=[16384,16384]"}).first == "camera.resolution");  // 8192² in all
 }
 
 TEST_CASE("world space keeps normals unit and fronts in front under any transform", "[scene]") {

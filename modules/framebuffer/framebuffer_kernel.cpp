@@ -1,5 +1,6 @@
 #include "modules/framebuffer/framebuffer_kernel.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace modules {
@@ -31,6 +32,10 @@ void FramebufferKernel::process(SpanPacket& p) {
     layer_[6][at] = p.n[1][i];
     layer_[7][at] = p.n[2][i];
   }
+  // The guard the stress tests read: values that are not finite, as written.
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < p.count; ++i)
+      nonfinite_ += !std::isfinite(p.rgb[c][i]) + !std::isfinite(p.n[c][i]);
   if (visible_.empty()) return;
   const bool splatted = p.tri->material->path == core::ShadingPath::TextureObject;
   for (int i = 0; i < p.count; ++i) {

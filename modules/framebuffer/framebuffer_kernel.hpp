@@ -29,12 +29,16 @@ class FramebufferKernel {
   }
 
   core::Frame& frame() { return frame_; }
+  // Colour and normal values written that were NaN or infinite (none may be: the stress
+  // tests check it).
+  uint64_t nonfinite() const { return nonfinite_; }
   // Deferred buffers (empty unless deferred): per pixel, 1 + the scene triangle of a
   // texture-object material seen there (0: none), and its specular term (3 floats).
   const std::vector<uint32_t>& visible_source() const { return visible_; }
   const std::vector<float>& specular() const { return specular_; }
 
  private:
+  uint64_t nonfinite_ = 0;
   std::vector<uint32_t> visible_;
   std::vector<float> specular_;
   core::Frame frame_;

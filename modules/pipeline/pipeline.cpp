@@ -70,6 +70,7 @@ void fill_counts(RenderResult& r, const Kernels& k) {
   r.pixels_walked = k.raster.pixels_walked();
   r.pixels_hidden = k.raster.pixels_hidden();
   r.precompute_s = k.bump_fetch ? k.bump_fetch->precompute_seconds() : 0.0;
+  r.nonfinite_written = k.framebuffer.nonfinite();
   for (auto& b : r.blocks) {
     if (b.name == "normal_interp") b.ranges = k.normal_interp.ranges();
     if (b.name == "bump_fetch") b.ranges = k.bump_fetch->ranges();
@@ -321,6 +322,7 @@ nlohmann::json RenderResult::stats_json() const {
   j["sim_time_s"] = double(frame_cycles) / (clock_mhz * 1e6);
   j["bottleneck"] = frame_cycles > 0 && bottleneck() ? nlohmann::json(bottleneck()->name) : nlohmann::json();
   j["precompute_s"] = precompute_s;
+  j["nonfinite_written"] = nonfinite_written;
   j["elaborated"] = nlohmann::json::array();
   for (const auto& b : blocks) j["elaborated"].push_back(b.name);
   j["triangles"] = {{"in", triangles_in}, {"drawn", triangles_drawn}};

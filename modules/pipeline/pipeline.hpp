@@ -103,6 +103,7 @@ struct RenderResult {
   uint64_t bin_cycles = 0;          // of the blocks' busy_per_bin (0: none)
   uint64_t trace_records = 0;       // pixels written to the VCD, all blocks
   double precompute_s = 0;          // bump maps built when the pipeline was (not in wall_s)
+  uint64_t nonfinite_written = 0;   // NaN or infinite colour or normal values the framebuffer wrote
 
   const BlockReport* bottleneck() const;  // the block with the most busy cycles
   Ops total_ops() const;
