@@ -19,6 +19,8 @@ const std::vector<SettingSpec>& pipeline_settings() {
        "elaborate the blocks some material needs, or every block (to measure what skipping saves)"},
       {"normal_interp.mode", "perspective", {"affine", "perspective"}, 0, 0,
        "constant increments of N (affine) or of N/w and 1/w (perspective)"},
+      {"normal_interp.reseed", "none", {"none", "line", "tile8", "tile16", "tile32"}, 0, 0,
+       "walk the whole triangle from its seed, or take every row start (and every 8, 16, 32 pixels) from the plane"},
       {"normalize.mode", "exact", {"exact", "forward-difference", "rsqrt0", "rsqrt1", "rsqrt2"},
        0, 0, "how the normal is normalized"},
       {"vector_interp.bump_vectors", "unit", {"unit", "affine"}, 0, 0,

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/compare.hpp"
 #include "modules/pipeline/pipeline.hpp"
 #include "reference/reference.hpp"
 #include "test_util.hpp"
@@ -39,4 +40,24 @@ TEST_CASE("stress scenes: no NaN or infinity reaches a frame, and coverage is th
     CHECK(r.frame.at("A") == ref.at("A"));
   }
   CHECK(scenes >= 16);
+}
+
+TEST_CASE("re-seeding the normal walker bounds its error on long spans and tall triangles", "[stress]") {
+  auto normal_error = [](const std::string& scene, const std::string& reseed) {
+    const core::Scene s = core::load_scene(test::source_path("scenes/stress/" + scene),
+                                           {"pipeline.normal_interp.reseed=" + reseed});
+    core::CompareOptions o;
+    o.layers = {"N"};
+    return core::compare_frames(modules::render_loop(s).frame, reference::to_frame(reference::render(s)), o)
+        .layers.at(0)
+        .max_abs;
+  };
+  // Along a 16384-pixel span the error grows with the steps; tiles of 32 bound it.
+  const double span_none = normal_error("long-spans.json", "none"), span_tile = normal_error("long-spans.json", "tile32");
+  INFO("long spans: none " << span_none << ", tile32 " << span_tile);
+  CHECK(span_tile < span_none / 10);
+  // Down 16384 rows the edge walk accumulates; re-seeding each row start bounds it.
+  const double tall_none = normal_error("tall-triangle.json", "none"), tall_line = normal_error("tall-triangle.json", "line");
+  INFO("tall triangle: none " << tall_none << ", line " << tall_line);
+  CHECK(tall_line < tall_none / 10);
 }

@@ -16,6 +16,20 @@ void NormalInterpKernel::process(SpanPacket& p) {
     x_ = row_x_;
     for (int c = 0; c < 3; ++c) n_[c] = row_n_[c];
   }
+  // Re-seeding (normal_interp.reseed): the row start, and every `tile` pixels along the
+  // row, taken straight from the plane instead of by steps — bounding how far rounding
+  // errors accumulate.
+  auto seed = [&](float n[3], int x, int y) {
+    for (int c = 0; c < 3; ++c) n[c] = t.n[c].at(x - t.x_ref, y - t.y_ref);
+    ops_ += kOpsPerReseed;
+    ++steps_;
+  };
+  if (reseed_ != 0 && row_y_ < p.y) {
+    row_y_ = p.y, row_x_ = p.row_start;
+    seed(row_n_, row_x_, row_y_);
+    x_ = row_x_;
+    for (int c = 0; c < 3; ++c) n_[c] = row_n_[c];
+  }
   // Down the left edge to this packet's row. Rows with no pixel at all (possible for
   // slivers) are crossed straight down.
   while (row_y_ < p.y) {
@@ -38,8 +52,19 @@ void NormalInterpKernel::process(SpanPacket& p) {
     for (int c = 0; c < 3; ++c) n_[c] = row_n_[c];
   }
   // Along the row, through hidden pixels, to the packet's first pixel.
-  for (; x_ < p.x0; ++x_) step(n_, dh);
-  for (int i = 0; i < p.count; ++i) {
+  const int tile = reseed_ > 0 ? reseed_ : 0;
+  auto tile_start = [&](int x) { return tile > 0 && x > row_x_ && (x - row_x_) % tile == 0; };
+  for (; x_ < p.x0; ++x_) {
+    if (tile_start(x_)) seed(n_, x_, row_y_);
+    step(n_, dh);
+  }
+  if (tile_start(x_)) seed(n_, x_, row_y_);
+  if (tile > 0) {  // the tiled walk; the plain one below stays a straight loop
+    for (int i = 0; i < p.count; ++i) {
+      if (i > 0 && tile_start(x_ + i)) seed(n_, x_ + i, row_y_);
+      for (int c = 0; c < 3; ++c) p.n[c][i] = n_[c], n_[c] += dh[c];
+    }
+  } else for (int i = 0; i < p.count; ++i) {
     p.n[0][i] = n_[0];
     p.n[1][i] = n_[1];
     p.n[2][i] = n_[2];

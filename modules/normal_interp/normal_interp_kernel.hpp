@@ -23,6 +23,11 @@ namespace modules {
 
 class NormalInterpKernel {
  public:
+  // reseed: 0 walks the whole triangle from its seed (the paper's); −1 takes every row
+  // start from the plane; N > 0 also every N pixels along the row (normal_interp.reseed).
+  explicit NormalInterpKernel(int reseed = 0) : reseed_(reseed) {}
+  // A re-seed: a0 + ax·dx + ay·dy for three components.
+  static constexpr Ops kOpsPerReseed{/*add*/ 6, /*mul*/ 6};
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
   uint64_t steps() const { return steps_; }  // increments added, all kinds
@@ -47,6 +52,7 @@ class NormalInterpKernel {
     ++steps_;
   }
 
+  int reseed_ = 0;
   uint32_t triangle_ = ~0u;
   int row_y_ = 0, row_x_ = 0;  // the walker's row and row start
   float row_n_[3] = {0, 0, 0}; // the normal there

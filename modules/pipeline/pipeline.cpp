@@ -28,6 +28,8 @@ Options read_options(const core::Scene& scene) {
                                " lights, the scene has " + std::to_string(scene.lights.size()));
   Options o;
   o.perspective = scene.pipeline.string("normal_interp.mode") == "perspective";
+  const std::string reseed = scene.pipeline.string("normal_interp.reseed");
+  o.reseed = reseed == "none" ? 0 : reseed == "line" ? -1 : std::stoi(reseed.substr(4));  // tileN
   o.normalize = parse_normalize_mode(scene.pipeline.string("normalize.mode"));
   o.clock_mhz = scene.pipeline.number("clock_mhz");
   o.elaborate_all = scene.pipeline.string("elaborate") == "all";
@@ -47,6 +49,7 @@ Options read_options(const core::Scene& scene) {
 Kernels::Kernels(const core::Scene& scene, const Options& o)
     : setup(scene, o.perspective, o.affine_bump_vectors),
       raster(scene.camera.width, scene.camera.height),
+      normal_interp(o.reseed),
       normalize(o.normalize),
       lighting(scene),
       framebuffer(scene, TexelProjectKernel::needed(scene)) {

@@ -41,6 +41,7 @@ const std::vector<std::string>& block_names();
 
 struct Options {
   bool perspective = true;
+  int reseed = 0;  // normal_interp.reseed: 0 none, −1 per line, N every N pixels
   NormalizeMode normalize = NormalizeMode::Exact;
   double clock_mhz = 500;
   bool elaborate_all = false;  // pipeline.elaborate = all: every block, needed or not
