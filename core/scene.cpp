@@ -253,9 +253,10 @@ void check_camera(JsonReader& r, const Camera& c) {
   if (c.far <= c.near) r.fail("far", "must be greater than near");
 }
 
-// A material's bump-mapping inputs: a bump path needs a height map (or, except the
-// classic path, a precomputed normal map); either must be usable by the texture unit.
-void check_bump_material(JsonReader& r, const Material& m, const std::vector<Texture>& textures) {
+// A material's path and its inputs: a texturing path needs a texture with power-of-two
+// sides; a bump path needs a height map (or, except the classic path, a precomputed
+// normal map), usable by the texture unit.
+void check_material_path(JsonReader& r, const Material& m, const std::vector<Texture>& textures) {
   if ((m.path == ShadingPath::TextureScreen || m.path == ShadingPath::TextureObject) && m.texture < 0)
     r.fail("path", std::string(to_string(m.path)) + " needs a texture in material \"" + m.name + "\"");
   if ((m.path == ShadingPath::TextureScreen || m.path == ShadingPath::TextureObject) && m.height_map >= 0)
@@ -395,7 +396,7 @@ Scene load_scene_text(const std::string& text, const std::string& name, const st
       m.path = parse_shading_path(r.choice("path", std::string("phong"),
                                            {"phong", "bump-classic", "bump-tangent", "bump-square", "bump-object",
                                             "texture-screen", "texture-object"}));
-      check_bump_material(r, m, s.textures);
+      check_material_path(r, m, s.textures);
       r.finish();
       material_index[m.name] = static_cast<int>(s.materials.size());
       s.materials.push_back(m);

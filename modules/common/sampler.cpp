@@ -68,7 +68,8 @@ void Sampler::nearest(const core::Texture& t, int level, float u, float v, float
   ops += kOpsNearest;
 }
 
-void Sampler::bilinear(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops) {
+void Sampler::bilinear(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops,
+                       int* first_texel) {
   float s, r;
   texel_coordinates(t, u, v, s, r);
   const float fs = std::floor(s), fr = std::floor(r);
@@ -76,6 +77,7 @@ void Sampler::bilinear(const core::Texture& t, int level, float u, float v, floa
   const int x0 = wrap(int(fs), t.width, t.wrap), x1 = wrap(int(fs) + 1, t.width, t.wrap);
   const int y0 = wrap(int(fr), t.height, t.wrap), y1 = wrap(int(fr) + 1, t.height, t.wrap);
   touch(level, x0, y0), touch(level, x1, y0), touch(level, x0, y1), touch(level, x1, y1);
+  if (first_texel) first_texel[0] = x0, first_texel[1] = y0;
   const glm::vec4* row0 = &t.texels[size_t(y0) * size_t(t.width)];
   const glm::vec4* row1 = &t.texels[size_t(y1) * size_t(t.width)];
   const glm::vec4 t00 = row0[x0], t10 = row0[x1], t01 = row1[x0], t11 = row1[x1];
