@@ -19,7 +19,8 @@ namespace {
 
 // Texel coordinates (s, r) of (u, v) on a level of W × H texels, with the wrap mode
 // applied as in core::Texture: s, r end within one texel of [0, W) × [0, H).
-void texel_coordinates(const core::Texture& t, float u, float v, float& s, float& r) {
+// Inlined: it runs for every probe of every pixel.
+[[gnu::always_inline]] inline void texel_coordinates(const core::Texture& t, float u, float v, float& s, float& r) {
   const float W = float(t.width), H = float(t.height);
   // Whole periods off first, so that far coordinates (a large uv_repeat) stay exact
   // enough and their texel indices in int's range; hardware drops the integer bits.
@@ -37,7 +38,7 @@ void texel_coordinates(const core::Texture& t, float u, float v, float& s, float
   if (!(s == s) || !(r == r)) s = r = 0;  // NaN uv (none reach here from the pipeline): texel 0
 }
 
-int wrap(int i, int n, core::Wrap w) {
+[[gnu::always_inline]] inline int wrap(int i, int n, core::Wrap w) {
   if (w == core::Wrap::Repeat) return i >= n ? i - n : i < 0 ? i + n : i;
   return std::clamp(i, 0, n - 1);
 }
@@ -68,8 +69,7 @@ void Sampler::nearest(const core::Texture& t, int level, float u, float v, float
   ops += kOpsNearest;
 }
 
-void Sampler::bilinear(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops,
-                       int* first_texel) {
+void Sampler::bilinear(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops) {
   float s, r;
   texel_coordinates(t, u, v, s, r);
   const float fs = std::floor(s), fr = std::floor(r);
@@ -77,7 +77,6 @@ void Sampler::bilinear(const core::Texture& t, int level, float u, float v, floa
   const int x0 = wrap(int(fs), t.width, t.wrap), x1 = wrap(int(fs) + 1, t.width, t.wrap);
   const int y0 = wrap(int(fr), t.height, t.wrap), y1 = wrap(int(fr) + 1, t.height, t.wrap);
   touch(level, x0, y0), touch(level, x1, y0), touch(level, x0, y1), touch(level, x1, y1);
-  if (first_texel) first_texel[0] = x0, first_texel[1] = y0;
   const glm::vec4* row0 = &t.texels[size_t(y0) * size_t(t.width)];
   const glm::vec4* row1 = &t.texels[size_t(y1) * size_t(t.width)];
   const glm::vec4 t00 = row0[x0], t10 = row0[x1], t01 = row1[x0], t11 = row1[x1];

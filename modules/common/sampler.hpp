@@ -51,15 +51,6 @@ class Sampler {
   void sample(const MipMap& map, float u, float v, float dudx, float dvdx, float dudy, float dvdy, float out[3],
               Ops& ops);
 
-  // One bilinear read of `t` at (u, v), no mip level chosen (a phong material's texture,
-  // as the golden model reads it); `first_texel`, if given, receives the footprint's
-  // first texel (x, y).
-  void read_bilinear(const core::Texture& t, float u, float v, float out[3], Ops& ops, int* first_texel = nullptr) {
-    line_count_ = 0;
-    bilinear(t, 0, u, v, out, ops, first_texel);
-    ops.line += uint64_t(line_count_);
-  }
-
   // The texture unit's work so far, in cycles at II 1: it reads four texels a cycle, and
   // a pixel takes at least one cycle.
   uint64_t cycles() const { return cycles_; }
@@ -69,8 +60,7 @@ class Sampler {
   float last_lod() const { return lod_; }
 
  private:
-  void bilinear(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops,
-                int* first_texel = nullptr);
+  void bilinear(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops);
   void nearest(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops);
   void trilinear(const MipMap& map, float lod, float u, float v, float out[3], Ops& ops);
   void ewa(const MipMap& map, float u, float v, float ax, float ay, float bx, float by, float out[3], Ops& ops);

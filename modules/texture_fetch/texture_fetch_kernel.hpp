@@ -41,9 +41,10 @@ class TextureFetchKernel {
     for (int c = 0; c < 3; ++c) out[5 + c] = p.tex[c][i];
   }
 
-  // phong: uv from uv/w (2 mul, 2 add a pixel), then the sampler's bilinear read (its
-  // own counts). Wrapping far coordinates is integer masking in hardware: not counted.
-  static constexpr Ops kOpsUvPerPixel{/*add*/ 2, /*mul*/ 2};
+  // uv (2 mul, 2 add), texel coordinates (2 mul, 3 add), fractions (2 add), four
+  // texel reads, three bilinear blends of 3 lerps (9 mul, 18 add). Wrapping far
+  // coordinates is integer masking in hardware (power-of-two sizes): not counted.
+  static constexpr Ops kOpsPerPixel{/*add*/ 25, /*mul*/ 13, 0, 0, 0, 0, /*fetch*/ 4};
   static constexpr Ops kOpsPerSpan{/*add*/ 4, /*mul*/ 4};  // two plane seeds
 
  private:
