@@ -1,6 +1,7 @@
 #include <filesystem>
 
 #include "app/commands.hpp"
+#include "core/input_error.hpp"
 #include "core/version.hpp"
 
 namespace app {
@@ -28,8 +29,8 @@ void describe(core::Frame& frame, const core::Scene& scene, const SceneOptions& 
   frame.attributes["shadetlm:overrides"] = nlohmann::json(options.overrides).dump(-1, ' ', false, replace);
 }
 
-void write_frame(const core::Frame& frame, const std::string& exr, const std::string& png) {
-  for (const std::string& path : {exr, png}) {
+void write_frame(const core::Frame& frame, const std::string& exr, const std::string& png, const std::string& heat) {
+  for (const std::string& path : {exr, png, heat}) {
     if (path.empty()) continue;
     const auto dir = std::filesystem::path(path).parent_path();
     if (!dir.empty()) std::filesystem::create_directories(dir);
@@ -44,6 +45,12 @@ void write_frame(const core::Frame& frame, const std::string& exr, const std::st
     if (!png.empty()) {
       written.emplace_back(core::temporary_path_for(png), png);
       core::write_png_preview(written.back().first, frame);
+    }
+    if (!heat.empty()) {
+      if (!frame.find("parallax.iterations"))
+        throw core::InputError("--heat-map", heat, "the frame has no parallax.iterations layer (no parallax material)");
+      written.emplace_back(core::temporary_path_for(heat), heat);
+      core::write_heat_map_png(written.back().first, frame, "parallax.iterations", 64.0f);
     }
   } catch (...) {
     for (const auto& [tmp, path] : written) core::remove_quietly(tmp);

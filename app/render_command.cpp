@@ -1,4 +1,4 @@
-// shadetlm render [SCENE] [-o frame.exr] [--preview frame.png] [--stats stats.json]
+// shadetlm render [SCENE] [-o frame.exr] [--preview frame.png] [--heat-map iterations.png] [--stats stats.json]
 //                 [--compare-reference] [--engine systemc|loop] [--set key=value ...]
 #include <chrono>
 #include <algorithm>
@@ -105,7 +105,7 @@ void check_writable(const std::string& path, const std::string& option) {
 Command add_render_command(CLI::App& app) {
   struct Options {
     SceneOptions scene;
-    std::string output = "out/frame.exr", preview, stats, engine = "systemc";
+    std::string output = "out/frame.exr", preview, heat_map, stats, engine = "systemc";
     bool compare = false;
     std::string vcd, region, triangles, timeline;
   };
@@ -114,6 +114,8 @@ Command add_render_command(CLI::App& app) {
   opt->scene.add_to(*cmd);
   cmd->add_option("-o,--output", opt->output, "EXR frame to write")->capture_default_str();
   cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview");
+  cmd->add_option("--heat-map", opt->heat_map,
+                  "write the parallax iterations per pixel as a heat map PNG (black 0 … white 64 and more)");
   cmd->add_option("--stats", opt->stats, "write statistics (time, cycles, operations, error) as JSON");
   cmd->add_flag("--compare-reference", opt->compare, "also render the golden model and report the error");
   cmd->add_option("--engine", opt->engine,
@@ -145,6 +147,7 @@ Command add_render_command(CLI::App& app) {
             const std::string gtkw = inspect.vcd.empty() ? "" : inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw";
             check_writable(opt->output, "--output");
             check_writable(opt->preview, "--preview");
+            check_writable(opt->heat_map, "--heat-map");
             check_writable(opt->stats, "--stats");
             check_writable(inspect.vcd, "--vcd");
             check_writable(gtkw, "--vcd");
@@ -175,7 +178,7 @@ Command add_render_command(CLI::App& app) {
                 out << stats.dump(2) << "\n";
                 if (!out) throw std::runtime_error(opt->stats + ": cannot write the statistics");
               }
-              write_frame(r.frame, opt->output, opt->preview);
+              write_frame(r.frame, opt->output, opt->preview, opt->heat_map);
             } catch (...) {
               if (!stats_tmp.empty()) core::remove_quietly(stats_tmp);
               take_back_inspection();
@@ -187,6 +190,7 @@ Command add_render_command(CLI::App& app) {
               } catch (...) {  // take the frame back: no output of a run that failed
                 core::remove_quietly(opt->output);
                 if (!opt->preview.empty()) core::remove_quietly(opt->preview);
+                if (!opt->heat_map.empty()) core::remove_quietly(opt->heat_map);
                 take_back_inspection();
                 throw;
               }

@@ -125,4 +125,23 @@ void write_png_preview(const std::string& path, const Frame& frame) {
   });
 }
 
+void write_heat_map_png(const std::string& path, const Frame& frame, const std::string& channel, float max_value) {
+  const std::vector<float>& c = frame.at(channel);
+  std::vector<unsigned char> rgb(frame.pixel_count() * 3);
+  // A ramp black → blue → red → yellow → white, piecewise linear in the value.
+  static const float stops[5][3] = {{0, 0, 0}, {0.1f, 0.2f, 0.9f}, {0.9f, 0.1f, 0.1f}, {1, 0.9f, 0.1f}, {1, 1, 1}};
+  for (size_t i = 0; i < frame.pixel_count(); ++i) {
+    const float v = std::isfinite(c[i]) && max_value > 0 ? std::clamp(c[i] / max_value, 0.0f, 1.0f) : 0.0f;
+    const float x = v * 4;
+    const int k = std::min(3, int(x));
+    const float f = x - float(k);
+    for (int j = 0; j < 3; ++j)
+      rgb[i * 3 + size_t(j)] = static_cast<unsigned char>(std::lround(255 * (stops[k][j] + (stops[k + 1][j] - stops[k][j]) * f)));
+  }
+  write_atomically(path, [&](const std::string& tmp) {
+    if (!stbi_write_png(tmp.c_str(), frame.width, frame.height, 3, rgb.data(), frame.width * 3))
+      throw std::runtime_error(path + ": cannot write the PNG");
+  });
+}
+
 }  // namespace core

@@ -39,6 +39,9 @@ void write_exr(const std::string& path, const Frame& frame);
 Frame read_exr(const std::string& path);
 // Writes R, G, B as an 8-bit sRGB PNG (clamped to [0, 1]), also through a rename.
 void write_png_preview(const std::string& path, const Frame& frame);
+// Writes one channel as a heat map PNG (black, blue, red, yellow, white from 0 to
+// max_value; larger values white), also through a rename.
+void write_heat_map_png(const std::string& path, const Frame& frame, const std::string& channel, float max_value);
 
 // Calls write(tmp) with a temporary path beside `path`, then renames it to `path`;
 // removes the temporary file if write throws.

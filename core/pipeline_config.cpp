@@ -42,7 +42,8 @@ const std::vector<SettingSpec>& pipeline_settings() {
         {"setup", {16, 8}},         {"raster", {4, 1}},         {"normal_interp", {2, 1}},
         {"bump_fetch", {24, 1}},    {"bump_perturb", {8, 1}},   {"normal_mux", {1, 1}},
         {"normalize", {12, 1}},     {"vector_interp", {20, 1}}, {"texture_fetch", {8, 1}},
-        {"lighting", {10, 1}},      {"framebuffer", {2, 1}},    {"texel_project", {16, 1}}};
+        {"lighting", {10, 1}},      {"framebuffer", {2, 1}},    {"texel_project", {16, 1}},
+        {"parallax", {16, 1}}};
     for (const auto& [block, t] : blocks) {
       table.push_back({std::string(block) + ".latency", t.first, {}, 0, 1000000, "latency in cycles"});
       table.push_back({std::string(block) + ".ii", t.second, {}, 1, 1000000, "cycles per unit of work"});

@@ -26,15 +26,29 @@ const char* to_string(ShadingPath p) {
     case ShadingPath::BumpObject: return "bump-object";
     case ShadingPath::TextureScreen: return "texture-screen";
     case ShadingPath::TextureObject: return "texture-object";
+    case ShadingPath::Parallax: return "parallax";
   }
   return "?";
 }
 
 ShadingPath parse_shading_path(const std::string& name) {
   for (ShadingPath p : {ShadingPath::Phong, ShadingPath::BumpClassic, ShadingPath::BumpTangent, ShadingPath::BumpSquare,
-                        ShadingPath::BumpObject, ShadingPath::TextureScreen, ShadingPath::TextureObject})
+                        ShadingPath::BumpObject, ShadingPath::TextureScreen, ShadingPath::TextureObject,
+                        ShadingPath::Parallax})
     if (name == to_string(p)) return p;
   throw std::invalid_argument("unknown shading path " + name);
+}
+
+const char* to_string(ParallaxMethod m) {
+  switch (m) {
+    case ParallaxMethod::Offset: return "offset";
+    case ParallaxMethod::Steep: return "steep";
+    case ParallaxMethod::Pom: return "pom";
+    case ParallaxMethod::Relief: return "relief";
+    case ParallaxMethod::Distance: return "distance";
+    case ParallaxMethod::Cone: return "cone";
+  }
+  return "?";
 }
 
 // ---------------------------------------------------------------- camera
@@ -270,6 +284,10 @@ void check_material_path(JsonReader& r, const Material& m, const std::vector<Tex
       r.fail("texture", "texture \"" + t.name + "\" is " + std::to_string(t.width) + "×" + std::to_string(t.height) + ": " +
                             to_string(m.path) + " needs power-of-two sides (mip levels); resample the image");
   }
+  if (m.path == ShadingPath::Parallax && m.height_map < 0)
+    r.fail("path", "parallax needs a height_map in material \"" + m.name + "\"");
+  if (m.path == ShadingPath::Parallax && r.has("height_scale"))
+    r.fail("height_scale", "the parallax path takes its depth from parallax.depth (uv units)");
   const bool bump = bump_path(m.path);
   if (!bump && m.normal_map >= 0) r.fail("normal_map", "given, but the path is phong (use a bump-* path)");
   if (m.path == ShadingPath::BumpClassic && m.normal_map >= 0)
@@ -284,7 +302,7 @@ void check_material_path(JsonReader& r, const Material& m, const std::vector<Tex
   if (m.normal_map >= 0 && textures[size_t(m.normal_map)].srgb)
     r.fail("normal_map", "expects an EXR of unit normals (shadetlm precompute normalmap), not an 8- or 16-bit image");
   auto usable = [&](int index, const char* key) {
-    if (!bump || index < 0) return;
+    if ((!bump && m.path != ShadingPath::Parallax) || index < 0) return;
     try {
       check_height_map(textures[size_t(index)], textures[size_t(index)].name, "");
     } catch (const InputError& e) {
@@ -395,7 +413,29 @@ Scene load_scene_text(const std::string& text, const std::string& name, const st
       m.square_k = r.number("square_k", 1.0, kMinLength, kMaxLength);
       m.path = parse_shading_path(r.choice("path", std::string("phong"),
                                            {"phong", "bump-classic", "bump-tangent", "bump-square", "bump-object",
-                                            "texture-screen", "texture-object"}));
+                                            "texture-screen", "texture-object", "parallax"}));
+      if (r.has("parallax")) {
+        if (m.path != ShadingPath::Parallax) r.fail("parallax", "given, but the path is not parallax");
+        JsonReader pr = r.object("parallax");
+        ParallaxSettings& ps = m.parallax;
+        const std::string method =
+            pr.choice("method", std::string("distance"), {"offset", "steep", "pom", "relief", "distance", "cone"});
+        for (ParallaxMethod pm : {ParallaxMethod::Offset, ParallaxMethod::Steep, ParallaxMethod::Pom,
+                                  ParallaxMethod::Relief, ParallaxMethod::Distance, ParallaxMethod::Cone})
+          if (method == to_string(pm)) ps.method = pm;
+        ps.refined = pr.choice("map", std::string("refined"), {"refined", "donnelly"}) == "refined";
+        if (pr.has("map") && ps.method != ParallaxMethod::Distance) pr.fail("map", "only the distance method reads it");
+        // Any depth is accepted: 0 or below is documented as flat (uv unchanged).
+        ps.depth = pr.number("depth", ps.depth, -1e6, 1e6);
+        ps.slices = pr.integer("slices", ps.slices, 1, 256);
+        ps.max_iterations = pr.integer("max_iterations", ps.max_iterations, 1, 1 << 16);
+        ps.layers_min = pr.integer("layers_min", ps.layers_min, 1, 4096);
+        ps.layers_max = pr.integer("layers_max", ps.layers_max, ps.layers_min, 4096);
+        ps.binary_steps = pr.integer("binary_steps", ps.binary_steps, 0, 64);
+        ps.min_elevation_deg = pr.number("min_elevation_deg", ps.min_elevation_deg, 0.1, 89);
+        ps.margin = pr.number("margin", ps.margin, 0, 64);
+        pr.finish();
+      }
       check_material_path(r, m, s.textures);
       r.finish();
       material_index[m.name] = static_cast<int>(s.materials.size());

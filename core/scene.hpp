@@ -49,7 +49,10 @@ struct Light {
 // screen plane by the texture unit (texture-screen), or splatted from object space by
 // texel_project (texture-object). A phong material with a texture reads it bilinearly
 // at the finest level.
-enum class ShadingPath { Phong, BumpClassic, BumpTangent, BumpSquare, BumpObject, TextureScreen, TextureObject };
+//
+// Parallax (parallax paper): the colour texture read where the view ray meets the
+// relief of the height map, found by the parallax block's tracer (docs/parallax.md).
+enum class ShadingPath { Phong, BumpClassic, BumpTangent, BumpSquare, BumpObject, TextureScreen, TextureObject, Parallax };
 const char* to_string(ShadingPath p);
 ShadingPath parse_shading_path(const std::string& name);
 // Paths whose normal is fetched from a texture of perturbed normals (Fig. 3), lit in
@@ -61,6 +64,21 @@ inline bool bump_path(ShadingPath p) {
   return p == ShadingPath::BumpClassic || fetches_normal(p);
 }
 
+// The parallax block's method and its settings (material "parallax": docs/scene-format.md).
+enum class ParallaxMethod { Offset, Steep, Pom, Relief, Distance, Cone };
+const char* to_string(ParallaxMethod m);
+struct ParallaxSettings {
+  ParallaxMethod method = ParallaxMethod::Distance;
+  bool refined = true;       // distance: the paper's refined map (else Donnelly's)
+  double depth = 0.05;       // the relief's depth in uv units (≤ 0: flat, uv unchanged)
+  int slices = 16;           // D: the distance and cone maps' depth in voxels
+  int max_iterations = 256;  // the tracer's cap (then it stops where it is)
+  int layers_min = 8, layers_max = 32;  // steep, pom, relief: layers facing / grazing
+  int binary_steps = 6;      // relief
+  double min_elevation_deg = 10;  // refined map: admissible directions (tracer space)
+  double margin = 0;              // refined map: voxels taken off (safety)
+};
+
 struct Material {
   std::string name;
   glm::dvec3 ambient{0.1, 0.1, 0.1}, diffuse{0.8, 0.8, 0.8}, specular{0.2, 0.2, 0.2};
@@ -71,6 +89,7 @@ struct Material {
   int normal_map = -1;    // precomputed perturbed normals (shadetlm precompute); -1 none
   double square_k = 1;    // bump-square: |Pu| = |Pv| = k assumed (relative bump height)
   ShadingPath path = ShadingPath::Phong;
+  ParallaxSettings parallax;  // path parallax
 };
 
 struct Object {

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/coverage.hpp"
+#include "reference/parallax.hpp"
 
 namespace reference {
 
@@ -170,7 +171,8 @@ Image render(const core::Scene& scene) {
       // (zero where the uv triangle has no area).
       glm::dvec3 Pu(0), Pv(0);
       double sign = 1;  // −1: uv mirrored against the normals
-      if (core::bump_path(material.path)) {
+      const bool parallax = material.path == core::ShadingPath::Parallax;
+      if (core::bump_path(material.path) || parallax) {
         const glm::dvec2 t1 = mesh.uvs[tri.y] - mesh.uvs[tri.x], t2 = mesh.uvs[tri.z] - mesh.uvs[tri.x];
         const double det = t1.x * t2.y - t2.x * t1.y;
         if (det != 0) Pu = ((P[1] - P[0]) * t2.y - (P[2] - P[0]) * t1.y) / det, Pv = ((P[2] - P[0]) * t1.x - (P[1] - P[0]) * t2.x) / det;
@@ -219,12 +221,22 @@ Image render(const core::Scene& scene) {
             img.depth[i] = t;
             img.alpha[i] = 1;
             glm::dvec3 tex(1);
+            glm::dvec2 tex_uv = uv;
+            if (parallax && glm::length(glm::cross(Pu, Pv)) > 0) {
+              // The view ray in the relief's frame: Pu, Pv and the normal on the side of
+              // the vertex normals, scaled to one uv unit (docs/parallax.md).
+              const glm::dvec3 across = glm::cross(Pu, Pv);
+              const double area = glm::length(across);
+              const glm::dmat3 frame(Pu, Pv, sign * across / area * std::sqrt(area));
+              const glm::dvec3 d = glm::inverse(frame) * (X - eye);
+              tex_uv = parallax_hit(scene.textures[material.height_map], uv, d, material.parallax.depth).uv;
+            }
             if (material.path == core::ShadingPath::TextureScreen || material.path == core::ShadingPath::TextureObject) {
               const glm::dvec2 uvs[3] = {mesh.uvs[tri.x], mesh.uvs[tri.y], mesh.uvs[tri.z]};
               tex = footprint_average(scene.textures[material.texture], px, py, eye, fwd, right * (tan_half * aspect),
                                       up * tan_half, P, Ng, uvs, uv, img.width, img.height);
             } else if (material.texture >= 0) {
-              tex = glm::dvec3(scene.textures[material.texture].bilinear(uv));
+              tex = glm::dvec3(scene.textures[material.texture].bilinear(tex_uv));
             }
             if (core::bump_path(material.path)) {
               const glm::dvec3 bumped = bump_normal(scene, object, material, N, uv, Pu, Pv, sign, img.normal[i]);

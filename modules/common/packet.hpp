@@ -51,6 +51,10 @@ struct TriangleSetup {
   // Classic path (Fig. 2): n × Pv and Pu × n over w, and c = |Pu × Pv| (1 and zero
   // vectors where the uv triangle has no area: no tangent frame, no perturbation).
   Plane n_x_pv[3], pu_x_n[3];
+  // Parallax: eye − P in the relief's tangent space (along Pu, Pv, and the normal scaled
+  // to uv units), over w; no frame where the uv triangle has no area.
+  Plane eye_t[3];
+  bool parallax_frame = false;
   float bump_c = 1;
   bool bump_frame = true;  // false: no Pu, Pv (uv without area): the normal is not perturbed
 };
@@ -69,6 +73,8 @@ struct SpanPacket {
   float l[kMaxLights][3][kSpanMax];  // vector_interp: unit L (point lights)
   float h[kMaxLights][3][kSpanMax];  // vector_interp: unit H (point lights or local viewer)
   float bump[3][kSpanMax]; // bump_fetch: the filtered normal N' (fetched paths) or Fu, Fv (classic)
+  float uvp[2][kSpanMax];  // parallax: uv where the view ray meets the relief
+  float iterations[kSpanMax];  // parallax: the tracer's iterations
   float tex[3][kSpanMax]; // texture_fetch: colour texture
   float rgb[3][kSpanMax]; // lighting (texture-object: the ambient and diffuse factor D)
   float spec[3][kSpanMax]; // lighting, texture-object only: the specular term S (C = tex ⊙ D + S later)

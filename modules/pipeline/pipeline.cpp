@@ -16,7 +16,7 @@ namespace modules {
 
 const std::vector<std::string>& block_names() {
   static const std::vector<std::string> names = {
-      "setup",     "raster",        "normal_interp", "bump_fetch", "bump_perturb", "normal_mux",
+      "setup",     "raster",        "parallax",      "normal_interp", "bump_fetch", "bump_perturb", "normal_mux",
       "normalize", "vector_interp", "texture_fetch", "lighting",   "framebuffer", "texel_project"};
   return names;
 }
@@ -57,6 +57,7 @@ Kernels::Kernels(const core::Scene& scene, const Options& o)
   // measure what the skipping saves.
   const bool all = o.elaborate_all;
   if (all || TexelProjectKernel::needed(scene)) texel_project.emplace(scene, o.splat_units);
+  if (all || ParallaxKernel::needed(scene)) parallax.emplace(scene);
   if (all || BumpFetchKernel::needed(scene)) bump_fetch.emplace(scene, o.bump);
   if (all || BumpPerturbKernel::needed(scene)) bump_perturb.emplace(o.perspective);
   if (all || NormalMuxKernel::needed(scene)) normal_mux.emplace();
@@ -72,7 +73,8 @@ void fill_counts(RenderResult& r, const Kernels& k) {
   r.triangles_drawn = k.setup.triangles_out();
   r.pixels_walked = k.raster.pixels_walked();
   r.pixels_hidden = k.raster.pixels_hidden();
-  r.precompute_s = k.bump_fetch ? k.bump_fetch->precompute_seconds() : 0.0;
+  r.precompute_s = (k.bump_fetch ? k.bump_fetch->precompute_seconds() : 0.0) +
+                   (k.parallax ? k.parallax->precompute_seconds() : 0.0);
   r.nonfinite_written = k.framebuffer.nonfinite();
   for (auto& b : r.blocks) {
     if (b.name == "normal_interp") b.ranges = k.normal_interp.ranges();
@@ -81,7 +83,14 @@ void fill_counts(RenderResult& r, const Kernels& k) {
     if (b.name == "vector_interp") b.ranges = k.vector_interp->ranges();
     if (b.name == "texel_project") b.details = k.texel_project->stats();
     if (b.name == "texture_fetch") b.details = {{"lod_computations", k.texture_fetch->lod_computations()}};
+    if (b.name == "parallax") b.details = {{"iterations", k.parallax->iterations()}};
   }
+}
+
+// The parallax tracer's iterations per pixel, as a layer of the frame.
+void add_parallax_layer(RenderResult& r, const Kernels& k) {
+  if (k.parallax && ParallaxKernel::needed(k.parallax->scene()))
+    r.frame.add("parallax.iterations") = k.parallax->iteration_layer();
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -105,6 +114,7 @@ class Top : public sc_core::sc_module {
       blocks_.push_back(stage.get());
       return stage;
     };
+    if (k.parallax) parallax_ = add(stage("parallax", *k.parallax, o));
     normal_interp_ = add(stage("normal_interp", k.normal_interp, o));
     if (k.bump_fetch) bump_fetch_ = add(stage("bump_fetch", *k.bump_fetch, o));
     if (k.bump_perturb) bump_perturb_ = add(stage("bump_perturb", *k.bump_perturb, o));
@@ -132,6 +142,7 @@ class Top : public sc_core::sc_module {
     };
     setup_->attach(tracer_.get(), -1, timeline(inspect), 0, filter_);
     raster_->attach(tracer_.get(), probe("raster", Raster::trace_names()), timeline(inspect), 1, filter_);
+    attach(parallax_.get(), probe, inspect);
     attach(normal_interp_.get(), probe, inspect);
     attach(bump_fetch_.get(), probe, inspect);
     attach(bump_perturb_.get(), probe, inspect);
@@ -168,6 +179,7 @@ class Top : public sc_core::sc_module {
   sc_core::sc_time period_;
   std::unique_ptr<Setup> setup_;
   std::unique_ptr<Raster> raster_;
+  std::unique_ptr<Stage<ParallaxKernel>> parallax_;
   std::unique_ptr<Stage<NormalInterpKernel>> normal_interp_;
   std::unique_ptr<Stage<BumpFetchKernel>> bump_fetch_;
   std::unique_ptr<Stage<BumpPerturbKernel>> bump_perturb_;
@@ -197,6 +209,7 @@ RenderResult render_loop(const core::Scene& scene, const Inspect& inspect) {
   const auto start = std::chrono::steady_clock::now();
   k.setup.run([&](const TriangleSetup& t) {
     k.raster.run(t, [&](SpanPacket& p) {
+      if (k.parallax && !k.parallax->bypass(p)) k.parallax->process(p);
       if (!k.normal_interp.bypass(p)) k.normal_interp.process(p);
       if (k.bump_fetch && !k.bump_fetch->bypass(p)) k.bump_fetch->process(p);
       if (k.bump_perturb && !k.bump_perturb->bypass(p)) k.bump_perturb->process(p);
@@ -220,6 +233,7 @@ RenderResult render_loop(const core::Scene& scene, const Inspect& inspect) {
   };
   report("setup", k.setup.ops());
   report("raster", k.raster.ops());
+  if (k.parallax) report("parallax", k.parallax->ops());
   report("normal_interp", k.normal_interp.ops());
   if (k.bump_fetch) report("bump_fetch", k.bump_fetch->ops());
   if (k.bump_perturb) report("bump_perturb", k.bump_perturb->ops());
@@ -232,6 +246,7 @@ RenderResult render_loop(const core::Scene& scene, const Inspect& inspect) {
   if (k.texel_project) report("texel_project", k.texel_project->ops());
   fill_counts(r, k);
   r.frame = std::move(k.framebuffer.frame());
+  add_parallax_layer(r, k);
   return r;
 }
 
@@ -270,6 +285,7 @@ RenderResult render_systemc(const core::Scene& scene, const Inspect& inspect) {
   for (const auto& b : r.blocks)
     if (b.name == "framebuffer") r.pixels_shaded = b.stats.pixels;
   r.frame = std::move(k.framebuffer.frame());
+  add_parallax_layer(r, k);
   return r;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // The pipeline: the blocks a scene needs, chained in the order of the papers' figures,
 //
-//   setup ─► raster ─► normal_interp ─► [bump_fetch] ─► [bump_perturb] ─► [normal_mux]
+//   setup ─► raster ─► [parallax] ─► normal_interp ─► [bump_fetch] ─► [bump_perturb] ─► [normal_mux]
 //         ─► normalize ─► [vector_interp] ─► [texture_fetch] ─► lighting ─► framebuffer
 //
 // (the blocks in brackets only where some material needs them: docs/pipeline.md)
@@ -28,6 +28,7 @@
 #include "modules/normal_interp/normal_interp_kernel.hpp"
 #include "modules/normal_mux/normal_mux_kernel.hpp"
 #include "modules/normalize/normalize_kernel.hpp"
+#include "modules/parallax/parallax_kernel.hpp"
 #include "modules/raster/raster_kernel.hpp"
 #include "modules/setup/setup_kernel.hpp"
 #include "modules/texel_project/texel_project_kernel.hpp"
@@ -60,6 +61,7 @@ struct Kernels {
   Kernels(const core::Scene& scene, const Options& options);
   SetupKernel setup;
   RasterKernel raster;
+  std::optional<ParallaxKernel> parallax;         // only if a material has the parallax path
   NormalInterpKernel normal_interp;
   std::optional<BumpFetchKernel> bump_fetch;      // only if a material has a bump path
   std::optional<BumpPerturbKernel> bump_perturb;  // only for bump-classic

@@ -87,11 +87,37 @@ bool SetupKernel::setup(const Vertex v[3], const core::SnappedTriangle& coverage
   }
   // uv planes for the texture unit (texture-object reads uv in texel_project instead).
   if ((t.material->texture >= 0 && t.material->path != core::ShadingPath::TextureObject) ||
-      core::bump_path(t.material->path))
+      core::bump_path(t.material->path) || t.material->path == core::ShadingPath::Parallax)
     for (int c = 0; c < 2; ++c) perspective_plane(t.uv[c], v[0].uv[c], v[1].uv[c], v[2].uv[c]);
   if (core::bump_path(t.material->path)) setup_bump(v, inv_w, ps, pu_, pv_, t, ops);
+  if (t.material->path == core::ShadingPath::Parallax) setup_parallax(v, inv_w, ps, t, ops);
   ops_ += ops;
   return true;
+}
+
+void SetupKernel::setup_parallax(const Vertex v[3], const float inv_w[3], const PlaneSolver<float>& ps,
+                                 TriangleSetup& t, Ops& ops) {
+  // The relief's frame: Pu, Pv and the normal on the side of the vertex normals, scaled
+  // to the length of one uv unit, L = √|Pu × Pv| (docs/parallax.md). eye − P is affine
+  // over the triangle, so its tangent-space planes over w are exact.
+  const glm::dvec3 pu_x_pv = glm::cross(pu_, pv_);
+  const double area = glm::length(pu_x_pv);
+  const glm::dvec3 normals = v[0].normal + v[1].normal + v[2].normal;
+  const glm::dvec3 n = (glm::dot(pu_x_pv, normals) < 0 ? -1.0 : 1.0) * pu_x_pv / area * std::sqrt(area);
+  const glm::dmat3 frame(pu_, pv_, n);
+  const double det = glm::determinant(frame);
+  t.parallax_frame = area > 0 && std::isfinite(float(area)) && det != 0 && std::isfinite(det);
+  if (!t.parallax_frame) return;
+  const glm::dmat3 to_tangent = glm::inverse(frame);
+  const glm::dvec3 eye = scene_.camera.position;
+  glm::dvec3 e[3];
+  for (int k = 0; k < 3; ++k) e[k] = to_tangent * (eye - v[k].position);
+  for (int c = 0; c < 3; ++c)
+    ps.solve(float(e[0][c]) * inv_w[0], float(e[1][c]) * inv_w[1], float(e[2][c]) * inv_w[2], t.eye_t[c].a0,
+             t.eye_t[c].ax, t.eye_t[c].ay);
+  // The frame and its inverse (about 40 mul, 25 add, 1 div, 2 sqrt), three vectors into
+  // it (27 mul, 27 add), three planes.
+  ops += kOpsPerPlane * 3 + Ops{/*add*/ 25 + 27, /*mul*/ 40 + 27 + 9, /*div*/ 1, /*sqrt*/ 2};
 }
 
 void SetupKernel::setup_bump(const Vertex v[3], const float inv_w[3], const PlaneSolver<float>& ps,

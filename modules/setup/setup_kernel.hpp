@@ -62,6 +62,9 @@ class SetupKernel {
     glm::dvec2 uv;
   };
   bool setup(const Vertex v[3], const core::SnappedTriangle& coverage, TriangleSetup& out);
+  // Parallax: eye − P in the relief's tangent space (docs/parallax.md).
+  void setup_parallax(const Vertex v[3], const float inv_w[3], const PlaneSolver<float>& ps, TriangleSetup& t,
+                      Ops& ops);
   // Bump-mapping planes (docs/bump-mapping.md); Pu, Pv of the whole triangle.
   void setup_bump(const Vertex v[3], const float inv_w[3], const PlaneSolver<float>& ps, glm::dvec3 pu,
                   glm::dvec3 pv, TriangleSetup& t, Ops& ops);
@@ -91,7 +94,7 @@ void SetupKernel::run(Emit&& emit) {
     const core::Mesh mesh = core::to_world(object);
     current_.object = int(o);
     current_.material = &scene_.materials[object.material];
-    const bool bump = core::bump_path(current_.material->path);
+    const bool bump = core::bump_path(current_.material->path) || current_.material->path == core::ShadingPath::Parallax;
     // L and H in object space: n_world ∝ M⁻ᵀ n_object, so n_world·L = n_object·(M⁻¹ L).
     to_object_ = glm::inverse(glm::dmat3(object.model));
     for (const auto& t : mesh.triangles) {

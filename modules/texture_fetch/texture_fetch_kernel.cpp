@@ -48,8 +48,9 @@ void TextureFetchKernel::process(SpanPacket& p) {
   const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
   float u_w = t.uv[0].at(dx, dy), v_w = t.uv[1].at(dx, dy);
   const float W = float(tex.width), H = float(tex.height);
+  const bool parallax = t.material->path == core::ShadingPath::Parallax;  // uv from the parallax block
   for (int i = 0; i < p.count; ++i) {
-    const float u = u_w * p.w[i], v = v_w * p.w[i];
+    const float u = parallax ? p.uvp[0][i] : u_w * p.w[i], v = parallax ? p.uvp[1][i] : v_w * p.w[i];
     u_w += t.uv[0].ax;
     v_w += t.uv[1].ax;
     // The same addressing as the texture unit's Sampler (modules/common/sampler.cpp),

@@ -1,0 +1,365 @@
+#include "core/parallax_map.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <limits>
+
+#include "core/frame.hpp"
+#include "core/input_error.hpp"
+
+namespace core {
+
+HeightField height_field(const Texture& map, const std::string& file, const std::string& field) {
+  if (map.width <= 0 || map.height <= 0 || map.texels.size() != size_t(map.width) * size_t(map.height))
+    throw InputError(file, field, "the height map is empty");
+  HeightField f;
+  f.width = map.width, f.height = map.height;
+  f.h.resize(map.texels.size());
+  for (size_t i = 0; i < map.texels.size(); ++i) {
+    const float v = map.texels[i].r;
+    if (!std::isfinite(v))
+      throw InputError(file, field,
+                       "the height map has a non-finite value at texel (" + std::to_string(i % size_t(map.width)) +
+                           ", " + std::to_string(i / size_t(map.width)) + ")");
+    f.h[i] = std::clamp(v, 0.0f, 1.0f);
+  }
+  return f;
+}
+
+float VolumeMap::sample(float x, float y, float z) const {
+  int i = int(std::floor(x)) % width, j = int(std::floor(y)) % height;
+  if (i < 0) i += width;
+  if (j < 0) j += height;
+  const int k = std::clamp(int(std::floor(z)), 0, slices - 1);
+  return at(i, j, k);
+}
+
+std::vector<float> cell_tops(const HeightField& f) {
+  std::vector<float> top(f.h.size());
+  for (int j = 0; j < f.height; ++j)
+    for (int i = 0; i < f.width; ++i)
+      top[size_t(j) * size_t(f.width) + size_t(i)] =
+          std::max(std::max(f.at(i, j), f.at(i + 1, j)), std::max(f.at(i, j + 1), f.at(i + 1, j + 1)));
+  return top;
+}
+
+namespace {
+
+constexpr float kFar = 1e20f;  // "no solid voxel on this line"
+
+// One axis of the box-gap transform, in place on `line` (squared gaps so far):
+//   out[i] = min over j of line[j] + max(0, |i − j| − 1)²,
+// the one-voxel dilation first (min of the three neighbours), then the lower envelope of
+// the parabolas line[j] + (i − j)² (Felzenszwalb & Huttenlocher 2012). A periodic line is
+// laid out three times so that the envelope sees the wrapped neighbours.
+void gap_transform_1d(std::vector<float>& line, bool periodic, std::vector<float>& g, std::vector<int>& v,
+                      std::vector<float>& z) {
+  const int n = int(line.size());
+  const int copies = periodic ? 3 : 1;
+  const int m = n * copies;
+  g.resize(size_t(m));
+  for (int c = 0; c < copies; ++c)
+    for (int i = 0; i < n; ++i) {
+      float best = line[size_t(i)];
+      for (int o : {-1, 1}) {
+        int k = i + o;
+        if (periodic) k = (k + n) % n;
+        if (k >= 0 && k < n) best = std::min(best, line[size_t(k)]);
+      }
+      g[size_t(c * n + i)] = best;
+    }
+  v.assign(size_t(m), 0);
+  z.assign(size_t(m) + 1, 0);
+  int k = -1;
+  for (int q = 0; q < m; ++q) {
+    if (g[size_t(q)] >= kFar) continue;
+    while (k >= 0) {
+      const int p = v[size_t(k)];
+      const float s = ((g[size_t(q)] + float(q) * float(q)) - (g[size_t(p)] + float(p) * float(p))) / float(2 * (q - p));
+      if (s <= z[size_t(k)]) {
+        --k;
+        continue;
+      }
+      ++k;
+      v[size_t(k)] = q, z[size_t(k)] = s, z[size_t(k) + 1] = std::numeric_limits<float>::infinity();
+      break;
+    }
+    if (k < 0) {
+      k = 0;
+      v[0] = q, z[0] = -std::numeric_limits<float>::infinity(), z[1] = std::numeric_limits<float>::infinity();
+    }
+  }
+  const int offset = periodic ? n : 0;  // the middle copy
+  if (k < 0) {
+    std::fill(line.begin(), line.end(), kFar);
+    return;
+  }
+  int e = 0;
+  for (int i = 0; i < n; ++i) {
+    const float q = float(i + offset);
+    while (z[size_t(e) + 1] < q) ++e;
+    const float d = q - float(v[size_t(e)]);
+    line[size_t(i)] = std::min(kFar, g[size_t(v[size_t(e)])] + d * d);
+  }
+}
+
+// The box-gap transform along one axis of a grid of `dims` (x fastest), in place.
+void gap_transform_axis(std::vector<float>& grid, const int dims[3], int axis, bool periodic) {
+  const size_t stride[3] = {1, size_t(dims[0]), size_t(dims[0]) * size_t(dims[1])};
+  const int n = dims[axis];
+  const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+  std::vector<float> line(static_cast<size_t>(n));
+  std::vector<float> g, z;
+  std::vector<int> v;
+  for (int ib = 0; ib < dims[b]; ++ib)
+    for (int ia = 0; ia < dims[a]; ++ia) {
+      const size_t base = size_t(ia) * stride[a] + size_t(ib) * stride[b];
+      for (int i = 0; i < n; ++i) line[size_t(i)] = grid[base + size_t(i) * stride[axis]];
+      gap_transform_1d(line, periodic, g, v, z);
+      for (int i = 0; i < n; ++i) grid[base + size_t(i) * stride[axis]] = line[size_t(i)];
+    }
+}
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+}  // namespace
+
+VolumeMap distance_map(const HeightField& f, int slices) {
+  VolumeMap m;
+  m.width = f.width, m.height = f.height, m.slices = slices;
+  const std::vector<float> top = cell_tops(f);
+  m.values.assign(size_t(f.width) * size_t(f.height) * size_t(slices), kFar);
+  // Solid: the voxel meets the cell's box [0, D·top] (touching counts: safe).
+  for (int k = 0; k < slices; ++k)
+    for (size_t c = 0; c < top.size(); ++c)
+      if (float(k) <= float(slices) * top[c]) m.values[size_t(k) * top.size() + c] = 0;
+  const int dims[3] = {f.width, f.height, slices};
+  gap_transform_axis(m.values, dims, 0, true);
+  gap_transform_axis(m.values, dims, 1, true);
+  gap_transform_axis(m.values, dims, 2, false);
+  for (float& v : m.values) v = std::sqrt(v);
+  m.params = {{"shadetlm:map", "distance"},
+              {"shadetlm:slices", std::to_string(slices)},
+              {"shadetlm:units", "voxels"},
+              {"shadetlm:safety", "box gap: no point of the voxel is nearer the cells' boxes [cell] x [0, D*max corner]"}};
+  return m;
+}
+
+VolumeMap refined_map(const HeightField& f, const VolumeMap& distance, const RefinedParams& p) {
+  const int W = f.width, H = f.height, D = distance.slices;
+  const size_t cells = size_t(W) * size_t(H);
+  const std::vector<float> top = cell_tops(f);
+  std::vector<float> remaining(distance.values.size(), std::numeric_limits<float>::infinity());
+  // The sampled directions, in the tracer's space (unit, pointing down).
+  struct Dir {
+    double x, y, z;
+  };
+  std::vector<Dir> dirs;
+  const double pi = 3.14159265358979323846;
+  const double lo = p.min_elevation_deg * pi / 180;
+  for (int e = 0; e < p.elevations; ++e) {
+    const double el = p.elevations == 1 ? lo : lo + (pi / 2 - lo) * double(e) / double(p.elevations);
+    for (int a = 0; a < p.azimuths; ++a) {
+      const double az = 2 * pi * (double(a) + 0.5 * (e % 2)) / double(p.azimuths);
+      dirs.push_back({std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), -std::sin(el)});
+    }
+  }
+  dirs.push_back({0, 0, -1});
+  struct Visit {
+    size_t voxel;
+    double t_out;
+  };
+  std::vector<Visit> visits;
+  const int n = std::max(1, p.rays_per_texel);
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const Dir& d : dirs) {
+    const double step_x = d.x != 0 ? 1 / std::abs(d.x) : inf, step_y = d.y != 0 ? 1 / std::abs(d.y) : inf;
+    const double step_z = 1 / std::abs(d.z);
+    for (int ry = 0; ry < H * n; ++ry)
+      for (int rx = 0; rx < W * n; ++rx) {
+        // The ray enters the top face at a lattice point; it is walked voxel by voxel (a
+        // 3-D DDA), each voxel's column tested exactly against its bilinear cell.
+        const double ox = (rx + 0.5) / n, oy = (ry + 0.5) / n, oz = D;
+        double ci = std::floor(ox), cj = std::floor(oy);
+        int k = D - 1;
+        double t_x = d.x > 0 ? (ci + 1 - ox) / d.x : d.x < 0 ? (ci - ox) / d.x : inf;
+        double t_y = d.y > 0 ? (cj + 1 - oy) / d.y : d.y < 0 ? (cj - oy) / d.y : inf;
+        double t_z = step_z;
+        double t = 0, t_hit = -1;
+        visits.clear();
+        while (k >= 0) {
+          const double t_end = std::min(std::min(t_x, t_y), t_z);
+          int i = int(ci) % W, j = int(cj) % H;
+          if (i < 0) i += W;
+          if (j < 0) j += H;
+          const size_t cell = size_t(j) * size_t(W) + size_t(i);
+          const double z_low = oz + t_end * d.z;  // the segment's lowest point
+          if (z_low <= double(D) * top[cell]) {   // else it passes over the cell's box
+            const double s = cell_hit<double>(f, int(ci), int(cj), ox + t * d.x - ci, oy + t * d.y - cj,
+                                              oz + t * d.z, d.x, d.y, d.z, t_end - t, double(D));
+            if (s >= 0) {
+              t_hit = t + s;
+              visits.push_back({size_t(k) * cells + cell, t_end});
+              break;
+            }
+          }
+          visits.push_back({size_t(k) * cells + cell, t_end});
+          t = t_end;
+          if (t_x <= t_y && t_x <= t_z) ci += d.x > 0 ? 1 : -1, t_x += step_x;
+          else if (t_y <= t_z) cj += d.y > 0 ? 1 : -1, t_y += step_y;
+          else --k, t_z += step_z;
+        }
+        if (t_hit < 0) t_hit = t;  // the floor (rounding): the ray ends at the bottom
+        for (const Visit& v : visits)
+          remaining[v.voxel] = std::min(remaining[v.voxel], float(std::max(0.0, t_hit - v.t_out)));
+      }
+  }
+  VolumeMap m = distance;
+  for (size_t v = 0; v < m.values.size(); ++v)
+    if (std::isfinite(remaining[v]))
+      m.values[v] = std::max(distance.values[v], remaining[v] - float(p.margin));
+  m.params["shadetlm:map"] = "refined";
+  m.params["shadetlm:min_elevation_deg"] = fmt(p.min_elevation_deg);
+  m.params["shadetlm:azimuths"] = std::to_string(p.azimuths);
+  m.params["shadetlm:elevations"] = std::to_string(p.elevations);
+  m.params["shadetlm:rays_per_texel"] = std::to_string(n);
+  m.params["shadetlm:margin"] = fmt(p.margin);
+  m.params["shadetlm:safety"] =
+      "max(distance map, smallest remaining distance from the voxel's exit to the first hit over the sampled rays "
+      "crossing it - margin); elevations in the tracer's space (x, y in texels, z in slices)";
+  return m;
+}
+
+ConeMap cone_map(const HeightField& f, int slices, int levels) {
+  const int W = f.width, H = f.height;
+  const size_t cells = size_t(W) * size_t(H);
+  const std::vector<float> top = cell_tops(f);
+  ConeMap m;
+  m.width = W, m.height = H, m.slices = slices;
+  m.apex.resize(cells);
+  m.ratio.assign(cells, float(std::max(W, H)));  // nothing higher anywhere: as wide as the map
+  std::vector<int> level(cells);
+  for (size_t c = 0; c < cells; ++c) {
+    level[c] = std::clamp(int(std::ceil(double(top[c]) * levels - 1e-9)), 0, levels);
+    m.apex[c] = float(double(slices) * level[c] / levels);
+  }
+  const int dims[3] = {W, H, 1};
+  std::vector<float> gap(cells);
+  for (int l = 1; l <= levels; ++l) {
+    bool any = false;
+    for (size_t c = 0; c < cells; ++c) {
+      gap[c] = level[c] >= l ? 0.0f : kFar;
+      any = any || level[c] >= l;
+    }
+    if (!any) continue;
+    gap_transform_axis(gap, dims, 0, true);
+    gap_transform_axis(gap, dims, 1, true);
+    for (size_t c = 0; c < cells; ++c)
+      if (level[c] < l) {
+        const double rise = double(slices) * double(l - level[c]) / levels;  // slices above the apex
+        m.ratio[c] = std::min(m.ratio[c], float(std::sqrt(double(gap[c])) / rise));
+      }
+  }
+  m.params = {{"shadetlm:map", "cone"},
+              {"shadetlm:slices", std::to_string(slices)},
+              {"shadetlm:levels", std::to_string(levels)},
+              {"shadetlm:units", "apex in slices, ratio in texels across per slice up"},
+              {"shadetlm:safety", "classic cones from the cell's footprint over the cells' boxes, heights rounded up"}};
+  return m;
+}
+
+namespace {
+
+std::string slice_name(int k) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "d.%03d", k);
+  return buf;
+}
+
+int attribute_int(const Frame& f, const std::string& path, const std::string& name) {
+  auto it = f.attributes.find(name);
+  if (it == f.attributes.end()) throw InputError(path, name, "missing from the header");
+  try {
+    return std::stoi(it->second);
+  } catch (const std::exception&) {
+    throw InputError(path, name, "is not a number: \"" + it->second + "\"");
+  }
+}
+
+void check_kind(const Frame& f, const std::string& path, const std::string& kind) {
+  auto it = f.attributes.find("shadetlm:map");
+  if (it == f.attributes.end())
+    throw InputError(path, "shadetlm:map", "missing: not a map written by shadetlm precompute");
+  if (it->second != kind && !(kind == "distance" && it->second == "refined"))
+    throw InputError(path, "shadetlm:map", "is \"" + it->second + "\", expected \"" + kind + "\"");
+}
+
+}  // namespace
+
+void write_volume_map(const std::string& path, const VolumeMap& map, const std::string& kind) {
+  Frame f(map.width, map.height);
+  f.attributes = map.params;
+  f.attributes["shadetlm:map"] = kind;
+  const size_t cells = size_t(map.width) * size_t(map.height);
+  for (int k = 0; k < map.slices; ++k) {
+    std::vector<float>& c = f.add(slice_name(k));
+    std::copy(map.values.begin() + ptrdiff_t(size_t(k) * cells), map.values.begin() + ptrdiff_t(size_t(k + 1) * cells),
+              c.begin());
+  }
+  write_exr(path, f);
+}
+
+VolumeMap read_volume_map(const std::string& path, const std::string& kind) {
+  const Frame f = read_exr(path);
+  check_kind(f, path, kind);
+  VolumeMap m;
+  m.width = f.width, m.height = f.height;
+  m.slices = attribute_int(f, path, "shadetlm:slices");
+  if (m.slices < 1 || m.slices > 1024) throw InputError(path, "shadetlm:slices", "must be in [1, 1024]");
+  const size_t cells = f.pixel_count();
+  m.values.resize(cells * size_t(m.slices));
+  for (int k = 0; k < m.slices; ++k) {
+    const Channel* c = f.find(slice_name(k));
+    if (!c) throw InputError(path, slice_name(k), "channel missing (the header says " + std::to_string(m.slices) + " slices)");
+    for (size_t i = 0; i < cells; ++i) {
+      if (!std::isfinite(c->values[i]) || c->values[i] < 0)
+        throw InputError(path, slice_name(k), "holds a negative or non-finite distance");
+      m.values[size_t(k) * cells + i] = c->values[i];
+    }
+  }
+  m.params = f.attributes;
+  return m;
+}
+
+void write_cone_map(const std::string& path, const ConeMap& map) {
+  Frame f(map.width, map.height);
+  f.attributes = map.params;
+  f.add("apex") = map.apex;
+  f.add("ratio") = map.ratio;
+  write_exr(path, f);
+}
+
+ConeMap read_cone_map(const std::string& path) {
+  const Frame f = read_exr(path);
+  check_kind(f, path, "cone");
+  ConeMap m;
+  m.width = f.width, m.height = f.height;
+  m.slices = attribute_int(f, path, "shadetlm:slices");
+  if (m.slices < 1 || m.slices > 1024) throw InputError(path, "shadetlm:slices", "must be in [1, 1024]");
+  for (const char* name : {"apex", "ratio"}) {
+    const Channel* c = f.find(name);
+    if (!c) throw InputError(path, name, "channel missing");
+    for (float v : c->values)
+      if (!std::isfinite(v) || v < 0) throw InputError(path, name, "holds a negative or non-finite value");
+    (std::string(name) == "apex" ? m.apex : m.ratio) = c->values;
+  }
+  m.params = f.attributes;
+  return m;
+}
+
+}  // namespace core

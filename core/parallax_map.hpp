@@ -1,0 +1,197 @@
+#pragma once
+// Height fields and the maps the parallax tracers read (docs/parallax.md; the parallax
+// paper, ../shared/papers/parallax-distance-map.md):
+//
+//  * Donnelly's distance map: per voxel, a distance to the relief that is safe for every
+//    point of the voxel;
+//  * the paper's refined map: per voxel, the smallest remaining distance to the first
+//    hit over the admissible view rays that cross the voxel unobstructed;
+//  * a safe cone map: per texel cell, an apex height and a cone ratio.
+//
+// The tracer's space. x, y in texels, texel centres at integers (x = u·W − ½,
+// y = (1 − v)·H − ½, wrapping: the maps tile); z in slices, the relief at z = D·h(x, y)
+// with h the bilinear height in [0, 1] and D the number of slices; the base polygon is
+// the top, z = D, where view rays enter. Voxel (i, j, k) is [i, i+1]×[j, j+1]×[k, k+1];
+// its column is exactly the bilinear cell whose corners are texels (i, j) … (i+1, j+1).
+// The maps do not depend on the relief's depth in the scene: a depth only scales z,
+// and the first hit of a ray is the same in any linearly scaled space.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/texture.hpp"
+
+namespace core {
+
+struct HeightField {
+  int width = 0, height = 0;
+  std::vector<float> h;  // in [0, 1], row-major, row 0 at the top (v = 1)
+
+  float at(int x, int y) const {  // wrapped
+    x %= width, y %= height;
+    if (x < 0) x += width;
+    if (y < 0) y += height;
+    return h[size_t(y) * size_t(width) + size_t(x)];
+  }
+};
+
+// The height field of a height map: its first channel, clamped to [0, 1]. Throws
+// InputError naming `file` and `field` for an empty map or a non-finite value.
+HeightField height_field(const Texture& map, const std::string& file, const std::string& field);
+
+// A height field's bilinear value at (x, y) in texels (wrapped).
+template <class Real>
+Real bilinear_height(const HeightField& f, Real x, Real y) {
+  const Real fx = std::floor(x), fy = std::floor(y);
+  const int i = int(fx), j = int(fy);
+  const Real a = x - fx, b = y - fy;
+  const Real h00 = f.at(i, j), h10 = f.at(i + 1, j), h01 = f.at(i, j + 1), h11 = f.at(i + 1, j + 1);
+  return (h00 + (h10 - h00) * a) * (1 - b) + (h01 + (h11 - h01) * a) * b;
+}
+
+// The smallest s in [0, length] where the segment p + s·d (p relative to the cell's
+// corner texel (i, j), so p.x, p.y in [0, 1]) is at or under the bilinear patch of cell
+// (i, j), or −1 if none. The patch is A + B·x + C·y + E·x·y, so z − D·h along the
+// segment is a quadratic in s: the test is exact up to rounding.
+template <class Real>
+Real cell_hit(const HeightField& f, int i, int j, Real px, Real py, Real pz, Real dx, Real dy, Real dz,
+              Real length, Real slices) {
+  const Real h00 = f.at(i, j), h10 = f.at(i + 1, j), h01 = f.at(i, j + 1), h11 = f.at(i + 1, j + 1);
+  const Real B = h10 - h00, C = h01 - h00, E = h00 - h10 - h01 + h11;
+  const Real q0 = pz - slices * (h00 + B * px + C * py + E * px * py);
+  if (q0 <= 0) return 0;
+  const Real q1 = dz - slices * (B * dx + C * dy + E * (px * dy + py * dx));
+  const Real q2 = -slices * E * dx * dy;
+  Real best = -1;
+  auto take = [&](Real s) {
+    if (s >= 0 && s <= length && (best < 0 || s < best)) best = s;
+  };
+  if (std::abs(q2) * length < Real(1e-7) * (std::abs(q1) + std::abs(q0) + Real(1e-30))) {
+    if (q1 < 0) take(-q0 / q1);  // (nearly) linear
+  } else {
+    const Real disc = q1 * q1 - 4 * q2 * q0;
+    if (disc >= 0) {
+      // The stable pair of roots: q = −½(q1 + sign(q1)·√disc), roots q/q2 and q0/q.
+      const Real q = Real(-0.5) * (q1 + std::copysign(std::sqrt(disc), q1));
+      take(q / q2);
+      if (q != 0) take(q0 / q);
+    }
+  }
+  // Rounding can hide a root at the segment's end that the end value shows.
+  if (best < 0 && q0 + length * (q1 + length * q2) <= 0) best = length;
+  return best;
+}
+
+// The first point at or under the relief along o + t·d from t = 0, walking the cells the
+// ray crosses and testing each exactly (cell_hit). Stops at the floor z = 0 at the
+// latest (every ray with d.z < 0 ends there); rays with d.z ≥ 0 return t = 0 (a ray
+// parallel to the surface or leaving it meets nothing: the entry point is kept).
+// `cells` counts the cells tested; at most `max_cells` are (then t where it stopped).
+template <class Real>
+struct CellMarch {
+  Real t = 0;
+  int cells = 0;
+  bool hit = false;
+};
+template <class Real>
+CellMarch<Real> march_cells(const HeightField& f, Real ox, Real oy, Real oz, Real dx, Real dy, Real dz,
+                            Real slices, int max_cells = 1 << 30) {
+  CellMarch<Real> r;
+  if (!(dz < 0)) return r;
+  const Real t_floor = std::max(Real(0), oz) / -dz;
+  Real ci = std::floor(ox), cj = std::floor(oy);
+  const Real inf = std::numeric_limits<Real>::infinity();
+  Real t_x = dx > 0 ? (ci + 1 - ox) / dx : dx < 0 ? (ci - ox) / dx : inf;
+  Real t_y = dy > 0 ? (cj + 1 - oy) / dy : dy < 0 ? (cj - oy) / dy : inf;
+  const Real step_x = dx != 0 ? 1 / std::abs(dx) : inf, step_y = dy != 0 ? 1 / std::abs(dy) : inf;
+  Real t = 0;
+  while (r.cells < max_cells) {
+    const Real t_end = std::min(std::min(t_x, t_y), t_floor);
+    ++r.cells;
+    const Real px = ox + t * dx - ci, py = oy + t * dy - cj, pz = oz + t * dz;
+    const Real s = cell_hit(f, int(ci), int(cj), std::clamp(px, Real(0), Real(1)), std::clamp(py, Real(0), Real(1)),
+                            pz, dx, dy, dz, std::max(Real(0), t_end - t), slices);
+    if (s >= 0) {
+      r.t = t + s, r.hit = true;
+      return r;
+    }
+    if (t_end >= t_floor) {  // rounding only: the floor is under every relief
+      r.t = t_floor, r.hit = true;
+      return r;
+    }
+    t = t_end;
+    if (t_x <= t_y) ci += dx > 0 ? 1 : -1, t_x += step_x;
+    else cj += dy > 0 ? 1 : -1, t_y += step_y;
+  }
+  r.t = t;
+  return r;
+}
+
+// A volume of W × H × D values, voxel (i, j, k) at (k·H + j)·W + i, with the parameters
+// it was made with (written to the EXR header as shadetlm:* attributes).
+struct VolumeMap {
+  int width = 0, height = 0, slices = 0;
+  std::vector<float> values;
+  std::map<std::string, std::string> params;
+
+  float at(int i, int j, int k) const {
+    return values[(size_t(k) * size_t(height) + size_t(j)) * size_t(width) + size_t(i)];
+  }
+  // The voxel that holds (x, y, z), z clamped into the volume.
+  float sample(float x, float y, float z) const;
+};
+
+// The cell's conservative top: the largest of its four corners. The bilinear patch never
+// rises above it, so the boxes [cell] × [0, D·top] hold the relief.
+std::vector<float> cell_tops(const HeightField& f);
+
+// Donnelly's distance map, made safe for sampling: per voxel, the Euclidean gap between
+// the voxel's box and the nearest voxel that meets a cell's box (so 0 next to the
+// relief); no point of the voxel is nearer the relief than that. Computed by a separable
+// linear-time distance transform (Felzenszwalb–Huttenlocher lower envelopes, after a
+// one-voxel dilation per axis, which turns centre distances into box gaps), wrapping in
+// x and y. In voxels.
+VolumeMap distance_map(const HeightField& f, int slices);
+
+// The paper's refined map. For each sampled admissible direction (elevation ≥
+// min_elevation_deg in the tracer's space; `azimuths` × `elevations` directions up to
+// the vertical), parallel rays enter the top face on a lattice of `rays_per_texel`² per
+// texel and are walked through the voxels to their exact first hit; every voxel crossed
+// on the way keeps the smallest remaining distance from its exit point to the hit (so the
+// value is safe at every point of that ray in the voxel). Stored: max(distance map,
+// smallest remaining − margin); voxels no sampled ray reaches keep the distance map's
+// value. O(directions × rays × voxels per ray).
+struct RefinedParams {
+  double min_elevation_deg = 10;
+  int azimuths = 16;
+  int elevations = 4;
+  int rays_per_texel = 2;
+  double margin = 0;  // voxels taken off every ray-derived value
+};
+VolumeMap refined_map(const HeightField& f, const VolumeMap& distance, const RefinedParams& p);
+
+// A safe cone map: per cell, an apex height (the cell's top rounded up to one of `levels`
+// heights, in slices) and a cone ratio (texels across per slice up) such that the cone
+// widening from the cell's footprint at the apex holds no relief. Computed per level by a
+// 2-D box-gap distance transform to the cells at least that high: O(levels × cells).
+// Classic (not relaxed) cones: a ray stepping inside one never crosses the surface, so
+// the generator is safe for any sampling point in the cell.
+struct ConeMap {
+  int width = 0, height = 0, slices = 0;
+  std::vector<float> apex, ratio;  // per cell, row-major
+  std::map<std::string, std::string> params;
+};
+ConeMap cone_map(const HeightField& f, int slices, int levels);
+
+// Maps as EXR: a volume's slices as channels "d.000" …, a cone map as "apex" and
+// "ratio", the parameters as shadetlm:* string attributes. Reading checks the kind and
+// the sizes and throws InputError naming the file and the field.
+void write_volume_map(const std::string& path, const VolumeMap& map, const std::string& kind);
+VolumeMap read_volume_map(const std::string& path, const std::string& kind);
+void write_cone_map(const std::string& path, const ConeMap& map);
+ConeMap read_cone_map(const std::string& path);
+
+}  // namespace core

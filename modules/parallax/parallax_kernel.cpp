@@ -1,0 +1,208 @@
+#include "modules/parallax/parallax_kernel.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace modules {
+
+ParallaxMaps build_parallax_maps(const core::Texture& height_map, const core::ParallaxSettings& s,
+                                 const std::string& file) {
+  const auto start = std::chrono::steady_clock::now();
+  ParallaxMaps m;
+  m.field = core::height_field(height_map, file, "height_map");
+  m.slices = s.slices;
+  if (s.method == core::ParallaxMethod::Distance) {
+    m.volume = core::distance_map(m.field, s.slices);
+    if (s.refined) {
+      core::RefinedParams p;
+      p.min_elevation_deg = s.min_elevation_deg;
+      p.margin = s.margin;
+      m.volume = core::refined_map(m.field, m.volume, p);
+    }
+  } else if (s.method == core::ParallaxMethod::Cone) {
+    m.cone = core::cone_map(m.field, s.slices, 4 * s.slices);
+  }
+  m.precompute_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return m;
+}
+
+namespace {
+
+// Operation counts of the tracer's steps (docs/parallax.md).
+constexpr Ops kOpsRay{/*add*/ 9, /*mul*/ 16, 0, 0, /*rsqrt*/ 1};  // tangent-space ray, scaled and normalized
+constexpr Ops kOpsHeightRead{/*add*/ 8, /*mul*/ 4, 0, 0, 0, 0, /*fetch*/ 4};  // bilinear height, ×D
+constexpr Ops kOpsLayer{/*add*/ 11, /*mul*/ 4, 0, 0, 0, 0, /*fetch*/ 4};                     // one layer down
+constexpr Ops kOpsSphere{/*add*/ 3, /*mul*/ 3, 0, 0, 0, 0, /*fetch*/ 1};        // p += d(p)·v̂
+constexpr Ops kOpsCone{/*add*/ 5, /*mul*/ 3, /*div*/ 2, 0, 0, 0, /*fetch*/ 1};  // step to the cone's side
+constexpr Ops kOpsCell{/*add*/ 16, /*mul*/ 18, /*div*/ 2, /*sqrt*/ 1, 0, 0, /*fetch*/ 4};  // exact cell test
+constexpr Ops kOpsOut{/*add*/ 4, /*mul*/ 2};  // texels back to uv
+
+float height_at(const core::HeightField& f, float x, float y) { return core::bilinear_height<float>(f, x, y); }
+
+// The exact cells from (x, y, z) on: the finish of the skipping tracers.
+void finish_cells(const core::ParallaxSettings& s, const ParallaxMaps& m, float& x, float& y, float& z, float dx,
+                  float dy, float dz, ParallaxTrace& r, Ops* ops) {
+  const int budget = std::max(1, s.max_iterations - r.iterations);
+  const auto march = core::march_cells<float>(m.field, x, y, z, dx, dy, dz, float(m.slices), budget);
+  x += march.t * dx, y += march.t * dy, z += march.t * dz;
+  r.iterations += march.cells;
+  r.fetches += 4 * march.cells;
+  if (ops) *ops += kOpsCell * uint64_t(march.cells);
+}
+
+}  // namespace
+
+ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0, float y0, float a,
+                             float b, float c, Ops* ops) {
+  ParallaxTrace r;
+  r.x = x0, r.y = y0;
+  if (!(s.depth > 0) || !(c < 0) || !std::isfinite(a) || !std::isfinite(b)) return r;
+  const core::HeightField& f = m.field;
+  const float W = float(f.width), H = float(f.height), D = float(m.slices);
+  if (ops) *ops += kOpsRay;
+  // The ray in the tracer's space (core/parallax_map.hpp): x along u, y down the rows,
+  // z in slices of the depth.
+  float dx = a * W, dy = -b * H, dz = c * D / float(s.depth);
+  const float scale = 1.0f / std::sqrt(dx * dx + dy * dy + dz * dz);
+  if (!std::isfinite(scale) || scale == 0) return r;
+  dx *= scale, dy *= scale, dz *= scale;  // unit in the tracer's space
+  float x = x0, y = y0, z = D;
+
+  switch (s.method) {
+    case core::ParallaxMethod::Offset: {
+      // T = T0 + depth·(1 − h(T0))·v̂xy with v̂ the unit physical direction: no division
+      // by v̂z, so the shift stays within the depth at grazing views.
+      const float h = height_at(f, x0, y0);
+      const float inv = 1.0f / std::sqrt(a * a + b * b + c * c);
+      const float shift = float(s.depth) * (1 - h) * inv;
+      r.x = x0 + shift * a * W, r.y = y0 - shift * b * H;
+      r.iterations = 1, r.fetches = 4;
+      if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 6, 0, 0, /*rsqrt*/ 1} + kOpsOut;
+      return r;
+    }
+    case core::ParallaxMethod::Steep:
+    case core::ParallaxMethod::Pom:
+    case core::ParallaxMethod::Relief: {
+      // More layers the flatter the view: n = max + (min − max)·|cos θ|, θ from the normal.
+      const float cos_view = -c / std::sqrt(a * a + b * b + c * c);
+      const int layers = std::max(1, int(std::lround(float(s.layers_max) + float(s.layers_min - s.layers_max) * cos_view)));
+      const float step = (D / float(layers)) / -dz;  // ray length per layer
+      float px = x, py = y, pz = z, ph = D;           // the last point above (the entry)
+      float h = ph;
+      for (int i = 1; i <= layers && r.iterations < s.max_iterations; ++i) {
+        x = x0 + float(i) * step * dx, y = y0 + float(i) * step * dy, z = D + float(i) * step * dz;
+        h = D * height_at(f, x, y);
+        ++r.iterations, r.fetches += 4;
+        if (ops) *ops += kOpsLayer;
+        if (z <= h) break;
+        px = x, py = y, pz = z, ph = h;
+      }
+      if (s.method == core::ParallaxMethod::Pom && z <= h) {
+        // Where the line between the two layers' heights crosses the ray.
+        const float above = pz - ph, below = h - z;
+        const float w = above + below > 0 ? above / (above + below) : 1.0f;
+        x = px + (x - px) * w, y = py + (y - py) * w;
+        if (ops) *ops += Ops{/*add*/ 6, /*mul*/ 2, /*div*/ 1};
+      } else if (s.method == core::ParallaxMethod::Relief && z <= h) {
+        for (int i = 0; i < s.binary_steps && r.iterations < s.max_iterations; ++i) {
+          const float mx = (px + x) * 0.5f, my = (py + y) * 0.5f, mz = (pz + z) * 0.5f;
+          const float mh = D * height_at(f, mx, my);
+          ++r.iterations, r.fetches += 4;
+          if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 3};
+          if (mz <= mh) x = mx, y = my, z = mz;
+          else px = mx, py = my, pz = mz;
+        }
+      }
+      break;
+    }
+    case core::ParallaxMethod::Distance: {
+      // Sphere tracing: p ← p + d(p)·v̂, the voxel holding p read as stored (its value is
+      // safe for every point of the voxel).
+      while (r.iterations < s.max_iterations) {
+        const float d = m.volume.sample(x, y, z);
+        ++r.iterations, ++r.fetches;
+        if (ops) *ops += kOpsSphere;
+        if (d < kParallaxNear) break;
+        x += d * dx, y += d * dy, z += d * dz;
+      }
+      if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, dx, dy, dz, r, ops);
+      break;
+    }
+    case core::ParallaxMethod::Cone: {
+      // Cone stepping: from p over cell (i, j), the ray stays in the cell's cone — free of
+      // relief — until it has come down to apex + (distance from the footprint)/ratio.
+      const float across = std::sqrt(dx * dx + dy * dy), down = -dz;
+      while (r.iterations < s.max_iterations) {
+        int i = int(std::floor(x)) % f.width, j = int(std::floor(y)) % f.height;
+        if (i < 0) i += f.width;
+        if (j < 0) j += f.height;
+        const size_t cell = size_t(j) * size_t(f.width) + size_t(i);
+        const float above = z - m.cone.apex[cell], ratio = m.cone.ratio[cell];
+        ++r.iterations, ++r.fetches;
+        if (ops) *ops += kOpsCone;
+        const float t = above > 0 && ratio > 0 ? above / (down + across / ratio) : 0.0f;
+        if (t < kParallaxNear) break;
+        x += t * dx, y += t * dy, z += t * dz;
+      }
+      if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, dx, dy, dz, r, ops);
+      break;
+    }
+  }
+  r.x = x, r.y = y;
+  if (ops) *ops += kOpsOut;
+  return r;
+}
+
+bool ParallaxKernel::needed(const core::Scene& scene) {
+  for (const auto& o : scene.objects)
+    if (scene.materials[size_t(o.material)].path == core::ShadingPath::Parallax) return true;
+  return false;
+}
+
+ParallaxKernel::ParallaxKernel(const core::Scene& scene) : scene_(scene), width_(scene.camera.width) {
+  iteration_layer_.assign(size_t(scene.camera.width) * size_t(scene.camera.height), 0.0f);
+  maps_.resize(scene.materials.size());
+  for (const auto& o : scene.objects) {
+    const core::Material& m = scene.materials[size_t(o.material)];
+    auto& slot = maps_[size_t(o.material)];
+    if (m.path != core::ShadingPath::Parallax || slot) continue;
+    slot = std::make_unique<ParallaxMaps>(
+        build_parallax_maps(scene.textures[size_t(m.height_map)], m.parallax, scene.file));
+    precompute_s_ += slot->precompute_s;
+  }
+}
+
+void ParallaxKernel::process(SpanPacket& p) {
+  const TriangleSetup& t = *p.tri;
+  const core::Material& m = *t.material;
+  const ParallaxMaps& maps = *maps_[size_t(&m - scene_.materials.data())];
+  const float W = float(maps.field.width), H = float(maps.field.height);
+  const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
+  float u_w = t.uv[0].at(dx, dy), v_w = t.uv[1].at(dx, dy);
+  float e_w[3];
+  for (int k = 0; k < 3; ++k) e_w[k] = t.eye_t[k].at(dx, dy);
+  uint64_t iterations = 0;
+  for (int i = 0; i < p.count; ++i) {
+    const float u = u_w * p.w[i], v = v_w * p.w[i];
+    captured_[0][i] = u, captured_[1][i] = v;
+    // d = P − eye in tangent space: the view ray's direction.
+    const float a = -e_w[0] * p.w[i], b = -e_w[1] * p.w[i], c = -e_w[2] * p.w[i];
+    u_w += t.uv[0].ax, v_w += t.uv[1].ax;
+    for (int k = 0; k < 3; ++k) e_w[k] += t.eye_t[k].ax;
+    ParallaxTrace r;
+    if (t.parallax_frame) r = trace_parallax(m.parallax, maps, u * W - 0.5f, (1 - v) * H - 0.5f, a, b, c, &ops_);
+    const bool moved = r.iterations > 0;
+    p.uvp[0][i] = moved ? (r.x + 0.5f) / W : u;
+    p.uvp[1][i] = moved ? 1 - (r.y + 0.5f) / H : v;
+    p.iterations[i] = float(r.iterations);
+    iterations += uint64_t(r.iterations);
+    iteration_layer_[size_t(p.y) * size_t(width_) + size_t(p.x0 + i)] = float(r.iterations);
+  }
+  ops_ += Ops{/*add*/ 5, /*mul*/ 5} * uint64_t(p.count);  // uv and the tangent-space eye vector, per pixel
+  if (p.count > 0) ops_ += Ops{/*add*/ 10, /*mul*/ 10};   // five plane seeds
+  iterations_ += iterations;
+  last_iterations_ = iterations;  // one iteration a cycle
+}
+
+}  // namespace modules

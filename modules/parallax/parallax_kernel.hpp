@@ -1,0 +1,89 @@
+#pragma once
+// The parallax block (parallax paper; docs/parallax.md): per pixel, the view ray in the
+// relief's tangent space, traced into the height field; the corrected uv goes on to the
+// colour fetch. Methods (material parallax.method):
+//
+//   offset    Welsh's parallax with offset limiting: one height fetch, T0 + depth·(1−h)·v̂xy
+//   steep     layered linear search, a view-dependent layer count; stops at the first
+//             layer under the relief
+//   pom       steep, then the linear intersection of the last two layers
+//   relief    steep, then a binary search between the last two layers
+//   distance  sphere tracing on a distance map: Donnelly's, or the paper's refined map
+//             (parallax.map) — the same tracer, only the map differs
+//   cone      cone stepping on a safe cone map
+//
+// distance and cone skip empty space, then walk the last cells with the exact per-cell
+// test (core::march_cells) — the same finish for both, so that their iteration counts
+// differ only by the skipping. Iterations: one per map or height read of the loop (a
+// cell test counts one, with four texel fetches).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/parallax_map.hpp"
+#include "modules/common/packet.hpp"
+
+namespace modules {
+
+// The maps one material's tracer reads, built from its height map.
+struct ParallaxMaps {
+  core::HeightField field;
+  core::VolumeMap volume;  // distance: Donnelly's or refined
+  core::ConeMap cone;      // cone
+  int slices = 16;
+  double precompute_s = 0;
+};
+ParallaxMaps build_parallax_maps(const core::Texture& height_map, const core::ParallaxSettings& s,
+                                 const std::string& file);
+
+struct ParallaxTrace {
+  float x = 0, y = 0;  // where the ray meets the relief, in texels (tracer space)
+  int iterations = 0;
+  int fetches = 0;     // texels read
+};
+// Below this distance to the relief (voxels), skipping stops and the exact cells finish.
+constexpr float kParallaxNear = 0.5f;
+
+// Traces from texel position (x0, y0) on the base polygon along d = (a, b, c), the view
+// direction in tangent space in uv units (a along Pu, b along Pv, c along the surface
+// normal: c < 0 into the surface). A depth ≤ 0, or a ray with c ≥ 0 (parallel to the
+// surface or leaving it), returns the entry point with 0 iterations. Adds the
+// operations done to `ops` if given.
+ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0, float y0, float a,
+                             float b, float c, Ops* ops = nullptr);
+
+class ParallaxKernel {
+ public:
+  ParallaxKernel(const core::Scene& scene);
+  static bool needed(const core::Scene& scene);
+
+  void process(SpanPacket& p);
+  const Ops& ops() const { return ops_; }
+  uint64_t work(const SpanPacket& p) const { return last_iterations_ > 0 ? last_iterations_ : uint64_t(p.count); }
+  bool bypass(const SpanPacket& p) const { return p.tri->material->path != core::ShadingPath::Parallax; }
+
+  const core::Scene& scene() const { return scene_; }
+  double precompute_seconds() const { return precompute_s_; }
+  // Iterations per pixel of the last packet drawn there (the EXR's parallax.iterations).
+  const std::vector<float>& iteration_layer() const { return iteration_layer_; }
+  uint64_t iterations() const { return iterations_; }
+
+  void set_capture(bool) {}
+  static std::vector<std::string> trace_names() { return {"u", "v", "u_out", "v_out", "iterations"}; }
+  void trace(const SpanPacket& p, int i, double* out) const {
+    out[0] = captured_[0][i], out[1] = captured_[1][i];
+    out[2] = p.uvp[0][i], out[3] = p.uvp[1][i], out[4] = p.iterations[i];
+  }
+
+ private:
+  const core::Scene& scene_;
+  int width_ = 0;
+  std::vector<std::unique_ptr<ParallaxMaps>> maps_;  // by material index
+  std::vector<float> iteration_layer_;
+  uint64_t iterations_ = 0, last_iterations_ = 0;
+  double precompute_s_ = 0;
+  Ops ops_;
+  float captured_[2][kSpanMax] = {};
+};
+
+}  // namespace modules
