@@ -23,6 +23,10 @@ Command add_bench_command(CLI::App& app);
 Command add_reference_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
 Command add_precompute_command(CLI::App& app);
+Command add_parallax_bench_command(CLI::App& app);
+// The parallax maps' subcommands of `precompute` (app/parallax_command.cpp): each with
+// the function that runs it when it was the one parsed.
+void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, std::function<int()>>>& runs);
 
 // Shared by the rendering commands.
 struct SceneOptions {
@@ -35,7 +39,6 @@ struct SceneOptions {
 // Stamps the header attributes (version, scene, resolved configuration, renderer).
 void describe(core::Frame& frame, const core::Scene& scene, const SceneOptions& options,
               const std::string& renderer);
-// Writes the EXR and, if asked, the PNG preview, creating the folders they go into.
 // Writes the frame (EXR), its preview (PNG) and the heat map of its parallax iterations
 // (PNG, 0 to 64 iterations), those named: all or none.
 void write_frame(const core::Frame& frame, const std::string& exr, const std::string& png, const std::string& heat = "");

@@ -2,7 +2,8 @@
 //                                      [--surface plane|sphere|torus|MESH] [--form ...]
 // Precomputed textures for the pipeline's texture units (docs/bump-mapping.md): the
 // bump-mapping paper's texture of perturbed normals, with its full mip chain, as one
-// tiled mip-mapped EXR that a scene names as a material's normal_map.
+// tiled mip-mapped EXR that a scene names as a material's normal_map. The parallax maps
+// (distancemap, refinedmap, conemap) are in app/parallax_command.cpp.
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -51,7 +52,11 @@ Command add_precompute_command(CLI::App& app) {
   nm->add_option("--wrap", opt->wrap, "border handling of the derivatives and the texture")
       ->capture_default_str()->check(CLI::IsMember({"repeat", "clamp"}));
   nm->add_flag("--no-renormalize", opt->keep_mip_lengths, "keep the mip levels' averaged normals as they are");
-  return {cmd, [opt]() {
+  auto maps = std::make_shared<std::vector<std::pair<CLI::App*, std::function<int()>>>>();
+  add_map_precompute(cmd, *maps);
+  return {cmd, [opt, maps]() {
+            for (const auto& [sub, run] : *maps)
+              if (sub->parsed()) return run();
             core::Texture height = core::load_texture_file(opt->height);
             height.wrap = opt->wrap == "repeat" ? core::Wrap::Repeat : core::Wrap::Clamp;
             core::check_height_map(height, opt->height, "");

@@ -156,12 +156,13 @@ TEST_CASE("golden bump-knot", "[golden][systemc]") { check_golden("bump-knot"); 
 TEST_CASE("golden bump-object", "[golden][systemc]") { check_golden("bump-object"); }
 TEST_CASE("golden texture-object", "[golden][systemc]") { check_golden("texture-object"); }
 TEST_CASE("golden texture-screen", "[golden][systemc]") { check_golden("texture-screen"); }
+TEST_CASE("golden parallax-steps", "[golden][systemc]") { check_golden("parallax-steps"); }
 
 TEST_CASE("every golden folder has its test case and its golden.json", "[golden]") {
   // A scene added to golden/ without a TEST_CASE above would never be checked by ctest.
   const std::set<std::string> covered = {"sphere",      "torus",       "knot",       "grazing-plane", "point-light",
                                          "demo",        "bump-plane",  "bump-sphere", "bump-torus",   "bump-knot",
-                                         "bump-object", "texture-object", "texture-screen"};
+                                         "bump-object", "texture-object", "texture-screen", "parallax-steps"};
   for (const auto& e : std::filesystem::directory_iterator(test::source_path("golden")))
     if (e.is_directory()) {
       INFO(e.path());

@@ -1,0 +1,284 @@
+// shadetlm precompute distancemap|refinedmap|conemap HEIGHT -o map.exr [--slices D] …
+// shadetlm parallax-bench [SCENE] [--material M] [--elevations 60,30,15,5] [--json out.json]
+//
+// The parallax paper's maps, and the measurement behind docs/parallax.md: every tracer
+// on bundles of parallel view rays over the whole height map at a few view elevations,
+// each ray checked against the golden model's exact first hit.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.hpp"
+#include "core/input_error.hpp"
+#include "core/parallax_map.hpp"
+#include "core/version.hpp"
+#include "modules/parallax/parallax_kernel.hpp"
+#include "reference/parallax.hpp"
+
+namespace app {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, std::function<int()>>>& runs) {
+  struct Options {
+    std::string height, output;
+    int slices = 16, levels = 0;
+    core::RefinedParams refined;
+  };
+  for (const char* kind : {"distancemap", "refinedmap", "conemap"}) {
+    auto opt = std::make_shared<Options>();
+    opt->output = std::string("out/") + kind + ".exr";
+    const std::string k = kind;
+    CLI::App* cmd = precompute->add_subcommand(
+        kind, k == "distancemap" ? "Donnelly's distance map (parallax, docs/parallax.md)"
+              : k == "refinedmap" ? "the parallax paper's refined distance map"
+                                  : "a safe cone map for cone stepping");
+    cmd->add_option("height", opt->height, "height map image (first channel, clamped to [0, 1])")->required();
+    cmd->add_option("-o,--output", opt->output, "EXR to write")->capture_default_str();
+    cmd->add_option("--slices", opt->slices, "D: voxels across the relief's depth")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 256));
+    if (k == "refinedmap") {
+      cmd->add_option("--min-elevation", opt->refined.min_elevation_deg,
+                      "lowest admissible view elevation, degrees, in the map's space (texels across, slices down)")
+          ->capture_default_str()
+          ->check(CLI::Range(0.1, 89.0));
+      cmd->add_option("--azimuths", opt->refined.azimuths, "directions around")->capture_default_str()->check(
+          CLI::Range(1, 256));
+      cmd->add_option("--elevations", opt->refined.elevations, "elevations below the vertical")
+          ->capture_default_str()
+          ->check(CLI::Range(1, 64));
+      cmd->add_option("--rays-per-texel", opt->refined.rays_per_texel, "parallel rays per texel side")
+          ->capture_default_str()
+          ->check(CLI::Range(1, 8));
+      cmd->add_option("--margin", opt->refined.margin, "voxels taken off every ray-derived value")
+          ->capture_default_str()
+          ->check(CLI::Range(0.0, 64.0));
+    }
+    if (k == "conemap")
+      cmd->add_option("--levels", opt->levels, "height levels the apexes round up to (default 4·slices)")
+          ->check(CLI::Range(1, 4096));
+    runs.push_back({cmd, [opt, k]() {
+                      const core::Texture map = core::load_texture_file(opt->height);
+                      const core::HeightField f = core::height_field(map, opt->height, "");
+                      const auto start = std::chrono::steady_clock::now();
+                      const auto dir = std::filesystem::path(opt->output).parent_path();
+                      std::error_code ec;
+                      if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+                      double seconds = 0;
+                      auto stamp = [&](std::map<std::string, std::string>& params) {
+                        params["shadetlm:version"] = core::kVersion;
+                        params["shadetlm:height"] = opt->height;
+                      };
+                      try {
+                        if (k == "conemap") {
+                          core::ConeMap m = core::cone_map(f, opt->slices, opt->levels > 0 ? opt->levels : 4 * opt->slices);
+                          seconds = seconds_since(start);
+                          stamp(m.params);
+                          core::write_cone_map(opt->output, m);
+                        } else {
+                          core::VolumeMap m = core::distance_map(f, opt->slices);
+                          if (k == "refinedmap") m = core::refined_map(f, m, opt->refined);
+                          seconds = seconds_since(start);
+                          stamp(m.params);
+                          core::write_volume_map(opt->output, m, k == "refinedmap" ? "refined" : "distance");
+                        }
+                      } catch (const core::InputError&) {
+                        throw;
+                      } catch (const std::exception& e) {
+                        throw core::InputError(opt->output, "--output", e.what());
+                      }
+                      std::cout << "precompute " << k << ": " << opt->height << " (" << f.width << "x" << f.height
+                                << "), " << opt->slices << " slices, " << seconds << " s\n  wrote " << opt->output
+                                << " (" << std::filesystem::file_size(opt->output) << " bytes)\n";
+                      return 0;
+                    }});
+  }
+}
+
+Command add_parallax_bench_command(CLI::App& app) {
+  struct Options {
+    SceneOptions scene;
+    std::string material, json;
+    std::vector<double> elevations{60, 30, 15, 5};
+    double azimuth = 30;
+    int rays = 128;
+  };
+  auto opt = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand(
+      "parallax-bench", "every parallax tracer against the exact hit, on parallel rays over a material's height map");
+  opt->scene.add_to(*cmd);
+  cmd->add_option("--material", opt->material, "the parallax material (default: the first)");
+  cmd->add_option("--elevations", opt->elevations, "view elevations above the surface, degrees")
+      ->delimiter(',')
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 90.0));
+  cmd->add_option("--azimuth", opt->azimuth, "view azimuth from the u axis, degrees")->capture_default_str();
+  cmd->add_option("--rays", opt->rays, "rays per side (a jittered grid over the map)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 4096));
+  cmd->add_option("--json", opt->json, "write the figures as JSON");
+  return {cmd, [opt]() {
+            const core::Scene scene = opt->scene.load();
+            const core::Material* mat = nullptr;
+            for (const auto& m : scene.materials)
+              if (m.path == core::ShadingPath::Parallax && (opt->material.empty() || m.name == opt->material)) {
+                mat = &m;
+                break;
+              }
+            if (!mat)
+              throw core::InputError(scene.file, "materials",
+                                     "no parallax material" + (opt->material.empty() ? "" : " named " + opt->material));
+            const core::Texture& height = scene.textures[size_t(mat->height_map)];
+            const core::ParallaxSettings base = mat->parallax;
+            if (!(base.depth > 0)) throw core::InputError(scene.file, "parallax.depth", "must be > 0 to measure");
+            // The methods as a designer would line them up; the maps built once each.
+            struct Method {
+              std::string name;
+              core::ParallaxSettings s;
+            };
+            std::vector<Method> methods;
+            auto with = [&](const char* name, core::ParallaxMethod m, bool refined = true) {
+              core::ParallaxSettings s = base;
+              s.method = m, s.refined = refined;
+              methods.push_back({name, s});
+            };
+            with("offset", core::ParallaxMethod::Offset);
+            with("steep", core::ParallaxMethod::Steep);
+            with("pom", core::ParallaxMethod::Pom);
+            with("relief", core::ParallaxMethod::Relief);
+            with("donnelly", core::ParallaxMethod::Distance, false);
+            with("refined", core::ParallaxMethod::Distance, true);
+            with("cone", core::ParallaxMethod::Cone);
+            nlohmann::json out = {{"scene", scene.file},
+                                  {"material", mat->name},
+                                  {"height_map", height.name},
+                                  {"size", {height.width, height.height}},
+                                  {"depth", base.depth},
+                                  {"slices", base.slices},
+                                  {"min_elevation_deg", base.min_elevation_deg},
+                                  {"margin", base.margin},
+                                  {"max_iterations", base.max_iterations},
+                                  {"layers", {base.layers_min, base.layers_max}},
+                                  {"binary_steps", base.binary_steps},
+                                  {"azimuth_deg", opt->azimuth},
+                                  {"rays", opt->rays * opt->rays}};
+            std::vector<modules::ParallaxMaps> maps;
+            for (const auto& m : methods) {
+              maps.push_back(modules::build_parallax_maps(height, m.s, scene.file));
+              out["precompute_s"][m.name] = maps.back().precompute_s;
+            }
+            const double pi = 3.14159265358979323846;
+            std::vector<int> donnelly_iterations;  // per ray, for the refined map's per-ray gate
+            const double W = height.width, H = height.height, D = base.slices;
+            for (double elevation : opt->elevations) {
+              const double el = elevation * pi / 180, az = opt->azimuth * pi / 180;
+              const glm::dvec3 d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), -std::sin(el));
+              // The ray's length in the tracer's space per unit of the golden model's t.
+              const double tracer_length = glm::length(glm::dvec3(d.x * W, d.y * H, d.z * D / base.depth));
+              nlohmann::json view = {{"elevation_deg", elevation},
+                                     {"tracer_elevation_deg", std::asin(-d.z * D / base.depth / tracer_length) * 180 / pi}};
+              // The entry points: a grid over the map, jittered within its cells (fixed hash).
+              std::vector<glm::dvec2> entries;
+              std::vector<reference::ParallaxHit> exact;
+              for (int j = 0; j < opt->rays; ++j)
+                for (int i = 0; i < opt->rays; ++i) {
+                  uint32_t x = uint32_t(i) * 0x9E3779B1u ^ uint32_t(j) * 0x85EBCA77u;
+                  x ^= x >> 15, x *= 0x2C1B3C6Du, x ^= x >> 12;
+                  const double jx = (x & 0xFFFF) / 65536.0, jy = (x >> 16) / 65536.0;
+                  entries.push_back({(i + jx) / opt->rays, (j + jy) / opt->rays});
+                  exact.push_back(reference::parallax_hit(height, entries.back(), d, base.depth));
+                }
+              for (size_t k = 0; k < methods.size(); ++k) {
+                std::vector<int> iterations(entries.size());
+                std::vector<double> error(entries.size());
+                double fetches = 0, overshoot = 0, skips = 0;
+                size_t more_than_donnelly = 0;
+                size_t wrong_layer = 0, past_hit = 0;
+                std::vector<modules::ParallaxTrace> traces(entries.size());
+                const auto start = std::chrono::steady_clock::now();
+                for (size_t r = 0; r < entries.size(); ++r)
+                  traces[r] = modules::trace_parallax(methods[k].s, maps[k], float(entries[r].x * W - 0.5),
+                                                      float((1 - entries[r].y) * H - 0.5), float(d.x), float(d.y),
+                                                      float(d.z));
+                const double ns = seconds_since(start) * 1e9 / double(entries.size());
+                for (size_t r = 0; r < entries.size(); ++r) {
+                  const auto& t = traces[r];
+                  // Back to uv, and the error in texels against the exact hit (wrapped).
+                  const double u = (t.x + 0.5) / W, v = 1 - (t.y + 0.5) / H;
+                  double eu = (u - exact[r].uv.x) * W, ev = (v - exact[r].uv.y) * H;
+                  eu -= W * std::round(eu / W), ev -= H * std::round(ev / H);
+                  error[r] = std::sqrt(eu * eu + ev * ev);
+                  iterations[r] = t.iterations;
+                  fetches += t.fetches;
+                  skips += t.skips;
+                  if (methods[k].name == "refined" && t.iterations > donnelly_iterations[r]) ++more_than_donnelly;
+                  // Where along the ray the result lies (its projection), against the hit.
+                  const double du = (u - entries[r].x) * W, dv = (v - entries[r].y) * H;
+                  const double along = (du * d.x * W + dv * d.y * H) / (d.x * W * d.x * W + d.y * H * d.y * H + 1e-300);
+                  const double past = (along - exact[r].t) * tracer_length;  // voxels past the exact hit
+                  overshoot = std::max(overshoot, past);
+                  if (past > 1e-3) ++past_hit;
+                  if ((along - exact[r].t_exit) * tracer_length > 0.01) ++wrong_layer;  // 0.01 voxel: rounding
+                }
+                auto percentile = [](std::vector<double> v, double p) {
+                  std::sort(v.begin(), v.end());
+                  return v.empty() ? 0.0 : v[std::min(v.size() - 1, size_t(p * double(v.size())))];
+                };
+                std::vector<double> it(iterations.begin(), iterations.end());
+                double it_sum = 0, err_sum = 0;
+                for (double x : it) it_sum += x;
+                for (double x : error) err_sum += x;
+                const double n = double(entries.size());
+                view["methods"][methods[k].name] = {
+                    {"iterations", {{"mean", it_sum / n}, {"p95", percentile(it, 0.95)}, {"max", percentile(it, 1.0)}}},
+                    {"fetches", fetches / n},
+                    {"skips", skips / n},
+                    {"uv_error_texels",
+                     {{"mean", err_sum / n}, {"p95", percentile(error, 0.95)}, {"max", percentile(error, 1.0)}}},
+                    {"wrong_layer", double(wrong_layer) / n},
+                    {"past_hit", double(past_hit) / n},
+                    {"max_overshoot_voxels", overshoot},
+                    {"ns_per_ray", ns}};
+                if (methods[k].name == "donnelly") donnelly_iterations = iterations;
+                if (methods[k].name == "refined") view["methods"]["refined"]["rays_over_donnelly"] = more_than_donnelly;
+              }
+              out["views"].push_back(view);
+            }
+            if (!opt->json.empty()) {
+              std::ofstream f(opt->json);
+              f << out.dump(2) << "\n";
+              if (!f) throw core::InputError(opt->json, "--json", "cannot be written");
+            }
+            // A short table on the terminal: iterations and error per method and view.
+            for (const auto& view : out["views"]) {
+              std::cout << "elevation " << view["elevation_deg"].get<double>() << "° (tracer "
+                        << view["tracer_elevation_deg"].get<double>() << "°)\n";
+              for (const auto& [name, m] : view["methods"].items())
+                std::cout << "  " << name << ": iterations " << m["iterations"]["mean"].get<double>() << " / "
+                          << m["iterations"]["p95"].get<double>() << " / " << m["iterations"]["max"].get<double>()
+                          << " (skips " << m["skips"].get<double>() << ")"
+                          << ", uv error " << m["uv_error_texels"]["mean"].get<double>() << " / "
+                          << m["uv_error_texels"]["p95"].get<double>() << " / "
+                          << m["uv_error_texels"]["max"].get<double>() << " texels, wrong layer "
+                          << m["wrong_layer"].get<double>() << ", overshoot "
+                          << m["max_overshoot_voxels"].get<double>() << " voxels, " << m["ns_per_ray"].get<double>()
+                          << " ns" << (m.contains("rays_over_donnelly") ? ", rays over donnelly " + m["rays_over_donnelly"].dump() : "")
+                          << "\n";
+            }
+            return 0;
+          }};
+}
+
+}  // namespace app
