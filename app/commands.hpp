@@ -40,7 +40,8 @@ struct SceneOptions {
 void describe(core::Frame& frame, const core::Scene& scene, const SceneOptions& options,
               const std::string& renderer);
 // Writes the frame (EXR), its preview (PNG) and the heat map of its parallax iterations
-// (PNG, 0 to 64 iterations), those named: all or none.
-void write_frame(const core::Frame& frame, const std::string& exr, const std::string& png, const std::string& heat = "");
+// (PNG, 0 to heat_max iterations), those named: all or none.
+void write_frame(const core::Frame& frame, const std::string& exr, const std::string& png, const std::string& heat = "",
+                 float heat_max = 32);
 
 }  // namespace app

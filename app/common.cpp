@@ -29,7 +29,8 @@ void describe(core::Frame& frame, const core::Scene& scene, const SceneOptions& 
   frame.attributes["shadetlm:overrides"] = nlohmann::json(options.overrides).dump(-1, ' ', false, replace);
 }
 
-void write_frame(const core::Frame& frame, const std::string& exr, const std::string& png, const std::string& heat) {
+void write_frame(const core::Frame& frame, const std::string& exr, const std::string& png, const std::string& heat,
+                 float heat_max) {
   for (const std::string& path : {exr, png, heat}) {
     if (path.empty()) continue;
     const auto dir = std::filesystem::path(path).parent_path();
@@ -50,7 +51,7 @@ void write_frame(const core::Frame& frame, const std::string& exr, const std::st
       if (!frame.find("parallax.iterations"))
         throw core::InputError("--heat-map", heat, "the frame has no parallax.iterations layer (no parallax material)");
       written.emplace_back(core::temporary_path_for(heat), heat);
-      core::write_heat_map_png(written.back().first, frame, "parallax.iterations", 64.0f);
+      core::write_heat_map_png(written.back().first, frame, "parallax.iterations", heat_max);
     }
   } catch (...) {
     for (const auto& [tmp, path] : written) core::remove_quietly(tmp);

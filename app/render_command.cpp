@@ -106,6 +106,7 @@ Command add_render_command(CLI::App& app) {
   struct Options {
     SceneOptions scene;
     std::string output = "out/frame.exr", preview, heat_map, stats, engine = "systemc";
+    float heat_max = 32;
     bool compare = false;
     std::string vcd, region, triangles, timeline;
   };
@@ -115,7 +116,10 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("-o,--output", opt->output, "EXR frame to write")->capture_default_str();
   cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview");
   cmd->add_option("--heat-map", opt->heat_map,
-                  "write the parallax iterations per pixel as a heat map PNG (black 0 … white 64 and more)");
+                  "write the parallax iterations per pixel as a heat map PNG (black 0 … white --heat-max and more)");
+  cmd->add_option("--heat-max", opt->heat_max, "iterations shown white in the heat map")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 1e6));
   cmd->add_option("--stats", opt->stats, "write statistics (time, cycles, operations, error) as JSON");
   cmd->add_flag("--compare-reference", opt->compare, "also render the golden model and report the error");
   cmd->add_option("--engine", opt->engine,
@@ -178,7 +182,7 @@ Command add_render_command(CLI::App& app) {
                 out << stats.dump(2) << "\n";
                 if (!out) throw std::runtime_error(opt->stats + ": cannot write the statistics");
               }
-              write_frame(r.frame, opt->output, opt->preview, opt->heat_map);
+              write_frame(r.frame, opt->output, opt->preview, opt->heat_map, opt->heat_max);
             } catch (...) {
               if (!stats_tmp.empty()) core::remove_quietly(stats_tmp);
               take_back_inspection();
@@ -217,6 +221,7 @@ Command add_render_command(CLI::App& app) {
                         << inspect.vcd << " " << inspect.vcd.substr(0, inspect.vcd.size() - 4) << ".gtkw)\n";
             if (!inspect.timeline.empty()) std::cout << "  timeline: " << inspect.timeline << "\n";
             std::cout << "  wrote " << opt->output << (opt->preview.empty() ? "" : " and " + opt->preview)
+                      << (opt->heat_map.empty() ? "" : " and " + opt->heat_map)
                       << (opt->stats.empty() ? "" : " and " + opt->stats) << "\n";
             return 0;
           }};

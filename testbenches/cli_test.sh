@@ -118,6 +118,28 @@ for path in bump-classic bump-tangent bump-square bump-object; do
     --set camera.resolution=[48,36]
 done
 
+# Parallax maps: written with their parameters in the header; bad input exits 2, no file.
+for kind in distancemap refinedmap conemap; do
+  check "precompute-$kind" 0 "$bin" precompute $kind "$tmp/h64.png" -o "$tmp/px/$kind.exr" --slices 8
+  expect_output "precompute-$kind" "8 slices"
+  check "precompute-$kind-missing" 2 "$bin" precompute $kind "$tmp/none.png" -o "$tmp/px/none-$kind.exr"
+  expect_no_file "precompute-$kind-missing" "$tmp/px/none-$kind.exr"
+done
+check parallax-bench 0 "$bin" parallax-bench "$src/scenes/parallax/steps.json" --elevations 30 --rays 16 --json "$tmp/px/b.json"
+expect_output parallax-bench "refined: iterations"
+check parallax-bench-no-material 2 "$bin" parallax-bench "$src/golden/sphere/scene.json" --json "$tmp/px/none.json"
+expect_output parallax-bench-no-material "no parallax material"
+expect_no_file parallax-bench-no-material "$tmp/px/none.json"
+check parallax-heat-map 0 "$bin" render "$src/scenes/parallax/steps.json" -o "$tmp/px/steps.exr" --heat-map "$tmp/px/heat.png" \
+  --set camera.resolution=[48,32]
+[[ -s "$tmp/px/heat.png" ]] && ((passes++)) || { echo "FAIL parallax-heat-map: no heat map"; ((failures++)); }
+check heat-map-without-parallax 2 "$bin" render -o "$tmp/px/demo.exr" --heat-map "$tmp/px/demo-heat.png" \
+  --set camera.resolution=[48,32]
+expect_no_file heat-map-without-parallax "$tmp/px/demo.exr"
+check parallax-no-height-map 2 "$bin" render "$src/scenes/parallax/steps.json" -o "$tmp/px/bad.exr" \
+  --set materials.carved.height_map=checker --set materials.carved.parallax.slices=0
+expect_output parallax-no-height-map "slices"
+
 # A mesh through assimp, from the scenes folder.
 check mesh 0 "$bin" reference "$src/scenes/knot.json" -o "$tmp/knot.exr" --set camera.resolution=[96,64]
 
