@@ -123,7 +123,7 @@ Command add_parallax_bench_command(CLI::App& app) {
   cmd->add_option("--elevations", opt->elevations, "view elevations above the surface, degrees")
       ->delimiter(',')
       ->capture_default_str()
-      ->check(CLI::Range(0.5, 90.0));
+      ->check(CLI::Range(0.5, 89.0));  // the along-ray measures project on the sideways direction
   cmd->add_option("--azimuth", opt->azimuth, "view azimuth from the u axis, degrees")->capture_default_str();
   cmd->add_option("--rays", opt->rays, "rays per side (a jittered grid over the map)")
       ->capture_default_str()

@@ -103,6 +103,9 @@ CellMarch<Real> march_cells(const HeightField& f, Real ox, Real oy, Real oz, Rea
   if (!(dz < 0)) return r;
   const Real t_floor = std::max(Real(0), oz) / -dz;
   Real ci = std::floor(ox), cj = std::floor(oy);
+  // On a cell border going back: start in the cell behind (no empty test of the other).
+  if (dx < 0 && ci == ox) ci -= 1;
+  if (dy < 0 && cj == oy) cj -= 1;
   const Real inf = std::numeric_limits<Real>::infinity();
   Real t_x = dx > 0 ? (ci + 1 - ox) / dx : dx < 0 ? (ci - ox) / dx : inf;
   Real t_y = dy > 0 ? (cj + 1 - oy) / dy : dy < 0 ? (cj - oy) / dy : inf;

@@ -286,6 +286,8 @@ void check_material_path(JsonReader& r, const Material& m, const std::vector<Tex
   }
   if (m.path == ShadingPath::Parallax && m.height_map < 0)
     r.fail("path", "parallax needs a height_map in material \"" + m.name + "\"");
+  if (m.path == ShadingPath::Parallax && m.height_map >= 0 && textures[size_t(m.height_map)].wrap == Wrap::Clamp)
+    r.fail("height_map", "the parallax maps tile: the height map must wrap (\"wrap\": \"repeat\")");
   if (m.path == ShadingPath::Parallax && r.has("height_scale"))
     r.fail("height_scale", "the parallax path takes its depth from parallax.depth (uv units)");
   const bool bump = bump_path(m.path);
@@ -429,6 +431,7 @@ Scene load_scene_text(const std::string& text, const std::string& name, const st
         ps.depth = pr.number("depth", ps.depth, -1e6, 1e6);
         ps.slices = pr.integer("slices", ps.slices, 1, 256);
         ps.max_iterations = pr.integer("max_iterations", ps.max_iterations, 1, 1 << 16);
+        ps.early_exit = pr.boolean("early_exit", ps.early_exit);
         ps.layers_min = pr.integer("layers_min", ps.layers_min, 1, 4096);
         ps.layers_max = pr.integer("layers_max", ps.layers_max, ps.layers_min, 4096);
         ps.binary_steps = pr.integer("binary_steps", ps.binary_steps, 0, 64);

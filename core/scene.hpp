@@ -73,6 +73,7 @@ struct ParallaxSettings {
   double depth = 0.05;       // the relief's depth in uv units (≤ 0: flat, uv unchanged)
   int slices = 16;           // D: the distance and cone maps' depth in voxels
   int max_iterations = 256;  // the tracer's cap (then it stops where it is)
+  bool early_exit = true;    // false: a fixed-length loop, every pixel pays the full count
   int layers_min = 8, layers_max = 32;  // steep, pom, relief: layers facing / grazing
   int binary_steps = 6;      // relief
   double min_elevation_deg = 10;  // refined map: admissible directions (tracer space)

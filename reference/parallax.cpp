@@ -7,7 +7,15 @@ namespace reference {
 
 namespace {
 
-double relief(const core::Texture& map, glm::dvec2 uv) { return std::clamp(map.bilinear(uv).r, 0.0, 1.0); }
+// The height: texels clamped to [0, 1] first, then bilinear (texel centres, wrapping).
+double relief(const core::Texture& map, glm::dvec2 uv) {
+  const double s = uv.x * map.width - 0.5, r = (1 - uv.y) * map.height - 0.5;
+  const double fs = std::floor(s), fr = std::floor(r);
+  const int x = int(fs - map.width * std::floor(fs / map.width)), y = int(fr - map.height * std::floor(fr / map.height));
+  auto h = [&](int i, int j) { return std::clamp(map.texel(i, j).r, 0.0, 1.0); };
+  const double a = s - fs, b = r - fr;
+  return (h(x, y) * (1 - a) + h(x + 1, y) * a) * (1 - b) + (h(x, y + 1) * (1 - a) + h(x + 1, y + 1) * a) * b;
+}
 
 }  // namespace
 

@@ -23,6 +23,7 @@ echo "== wall time, one run each: SystemC / plain loop, 1920x1080, per path (goa
 if [[ $scene == "$root/scenes/bench-1080p.json" ]]; then
   "$bin" bench "$root/scenes/bench-bump-1080p.json" "$@"
   "$bin" bench "$root/scenes/bench-texture-1080p.json" "$@"
+  "$bin" bench "$root/scenes/bench-parallax-1080p.json" "$@"
 fi
 
 echo
@@ -48,6 +49,7 @@ extra=("$@")
 count "benchmark scene at 480x270 (3 lights, texture)" "$scene" "[480,270]"
 count "bump benchmark scene at 480x270 (all four bump paths)" "$root/scenes/bench-bump-1080p.json" "[480,270]"
 count "texturing benchmark at 480x270 (texel_project, anisotropic)" "$root/scenes/bench-texture-1080p.json" "[480,270]"
+count "parallax benchmark at 480x270 (refined map, relief, cone)" "$root/scenes/bench-parallax-1080p.json" "[480,270]"
 # The leanest Phong configuration: one directional light, viewer at infinity, no
 # texture (vector_interp and texture_fetch are not elaborated).
 count "golden/sphere at 960x720 (minimal Phong)" "$root/golden/sphere/scene.json" "[960,720]"
@@ -55,6 +57,7 @@ count "golden/bump-sphere at 960x720 (bump-classic)" "$root/golden/bump-sphere/s
 count "golden/bump-plane at 960x720 (bump-tangent)" "$root/golden/bump-plane/scene.json" "[960,720]"
 count "golden/texture-screen at 960x720 (EWA)" "$root/golden/texture-screen/scene.json" "[960,720]"
 count "golden/texture-object at 960x720 (texel_project)" "$root/golden/texture-object/scene.json" "[960,720]"
+count "golden/parallax-steps at 960x720 (refined map)" "$root/golden/parallax-steps/scene.json" "[960,720]"
 
 echo
 echo "== each block's share of the run time (callgrind, inclusive, SystemC, benchmark scene at 480x270) =="

@@ -277,3 +277,54 @@ TEST_CASE("maps go to EXR with their parameters and come back, bad files named",
   nan_map.texels[5].r = std::nanf("");
   CHECK_THROWS_AS(core::height_field(nan_map, "nan.png", "height_map"), core::InputError);
 }
+
+TEST_CASE("without early exit every pixel pays the full loop, for the same result", "[parallax]") {
+  const core::Texture map = noise_map();
+  const View v = view(30, 8);
+  for (auto method : {core::ParallaxMethod::Steep, core::ParallaxMethod::Distance, core::ParallaxMethod::Cone}) {
+    auto s = settings(method);
+    s.layers_min = s.layers_max = 20;
+    s.max_iterations = 64;
+    const auto maps = modules::build_parallax_maps(map, s, "map");
+    auto fixed = s;
+    fixed.early_exit = false;
+    for (const glm::dvec2& e : v.entries) {
+      const float x = float(e.x * 64 - 0.5), y = float((1 - e.y) * 64 - 0.5);
+      const auto a = modules::trace_parallax(s, maps, x, y, float(v.d.x), float(v.d.y), float(v.d.z));
+      const auto b = modules::trace_parallax(fixed, maps, x, y, float(v.d.x), float(v.d.y), float(v.d.z));
+      INFO(core::to_string(method));
+      CHECK(a.x == b.x);
+      CHECK(a.y == b.y);
+      CHECK(a.iterations < b.iterations);
+      CHECK(b.iterations == (method == core::ParallaxMethod::Steep ? 20 : 64));
+    }
+  }
+}
+
+TEST_CASE("the box-gap transform stays exact on a 4096-texel line", "[parallax]") {
+  // The tripled periodic line reaches positions past 2^12; their squares pass float's
+  // 2^24, so the envelope is computed in double (a review found float picking the wrong
+  // parabola there).
+  core::HeightField f;
+  f.width = 4096, f.height = 1;
+  f.h.assign(4096, 0.0f);
+  const int spikes[] = {5, 2047, 3001, 4090};
+  for (int s : spikes) f.h[size_t(s)] = 1.0f;
+  const core::VolumeMap m = core::distance_map(f, 4);
+  const std::vector<float> top = core::cell_tops(f);
+  for (int s : spikes)
+    for (int i = s - 6; i <= s + 6; ++i) {
+      const int x = (i + 4096) % 4096;
+      for (int k = 0; k < 4; ++k) {
+        double best = 1e30;
+        for (int j = x - 12; j <= x + 12; ++j)
+          for (int kk = 0; kk < 4; ++kk)
+            if (float(kk) <= 4.0f * top[size_t((j + 4096) % 4096)]) {
+              const double gx = std::max(0, std::abs(j - x) - 1), gz = std::max(0, std::abs(kk - k) - 1);
+              best = std::min(best, std::sqrt(gx * gx + gz * gz));
+            }
+        INFO("x " << x << " k " << k);
+        CHECK(m.at(x, 0, k) == Approx(best).margin(1e-6));
+      }
+    }
+}

@@ -17,6 +17,11 @@ FramebufferKernel::FramebufferKernel(const core::Scene& scene, bool deferred)
                          std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
   for (int k = 0; k < 8; ++k) frame_.add(names[k], fill[k]);
   for (int k = 0; k < 8; ++k) layer_[k] = frame_.at(names[k]).data();
+  // The parallax tracer's iterations per pixel, where a scene has a parallax material.
+  for (const auto& o : scene.objects)
+    if (scene.materials[size_t(o.material)].path == core::ShadingPath::Parallax)
+      iterations_ = frame_.add("parallax.iterations").data();
+  for (int k = 0; k < 8; ++k) layer_[k] = frame_.at(names[k]).data();  // adding may move the channels
 }
 
 void FramebufferKernel::process(SpanPacket& p) {
@@ -31,6 +36,10 @@ void FramebufferKernel::process(SpanPacket& p) {
     layer_[5][at] = p.n[0][i];
     layer_[6][at] = p.n[1][i];
     layer_[7][at] = p.n[2][i];
+  }
+  if (iterations_) {  // 0 where a nearer surface without parallax covers the pixel
+    const bool parallax = p.tri->material->path == core::ShadingPath::Parallax;
+    for (int i = 0; i < p.count; ++i) iterations_[base + size_t(i)] = parallax ? p.iterations[i] : 0.0f;
   }
   // The guard the stress tests read: values that are not finite, as written.
   for (int c = 0; c < 3; ++c)

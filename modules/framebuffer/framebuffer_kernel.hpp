@@ -1,6 +1,7 @@
 #pragma once
 // The framebuffer: colour, coverage, depth (w, the eye-space depth) and normal layers
-// of the frame, laid out as the golden model's (docs/golden-model.md). Depth testing
+// of the frame, laid out as the golden model's (docs/golden-model.md), and the parallax
+// tracer's iterations per pixel where a scene has a parallax material. Depth testing
 // happened early, in the raster block; a later packet at the same pixel is nearer.
 #include <string>
 #include <vector>
@@ -43,6 +44,7 @@ class FramebufferKernel {
   std::vector<float> specular_;
   core::Frame frame_;
   float* layer_[8];  // R, G, B, A, Z, N.X, N.Y, N.Z
+  float* iterations_ = nullptr;  // parallax.iterations, if the scene has a parallax material
   Ops ops_;           // stores only: no arithmetic
 };
 

@@ -67,6 +67,8 @@ ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps
   const float scale = 1.0f / std::sqrt(dx * dx + dy * dy + dz * dz);
   if (!std::isfinite(scale) || scale == 0) return r;
   dx *= scale, dy *= scale, dz *= scale;  // unit in the tracer's space
+  // A ray this close to the surface would run over 10⁶ texels: treated as parallel.
+  if (-dz < 1e-6f) return r;
   float x = x0, y = y0, z = D;
 
   switch (s.method) {
@@ -98,6 +100,17 @@ ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps
         if (z <= h) break;
         px = x, py = y, pz = z, ph = h;
       }
+      if (!s.early_exit) {  // the loop runs every layer; the hit is the first one under
+        const int idle = layers - std::min(layers, r.iterations);
+        r.iterations += idle, r.fetches += 4 * idle;
+        if (ops) *ops += kOpsLayer * uint64_t(idle);
+      }
+      if (s.method == core::ParallaxMethod::Pom && z <= h && pz == D) {
+        // Under the relief at the first layer: the entry's height, for the line below.
+        ph = D * height_at(f, x0, y0);
+        ++r.iterations, r.fetches += 4;
+        if (ops) *ops += kOpsHeightRead;
+      }
       if (s.method == core::ParallaxMethod::Pom && z <= h) {
         // Where the line between the two layers' heights crosses the ray.
         const float above = pz - ph, below = h - z;
@@ -125,6 +138,7 @@ ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps
         if (ops) *ops += kOpsSphere;
         if (d < kParallaxNear) break;
         x += d * dx, y += d * dy, z += d * dz;
+        ++r.skips;
       }
       if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, dx, dy, dz, r, ops);
       break;
@@ -144,10 +158,18 @@ ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps
         const float t = above > 0 && ratio > 0 ? above / (down + across / ratio) : 0.0f;
         if (t < kParallaxNear) break;
         x += t * dx, y += t * dy, z += t * dz;
+        ++r.skips;
       }
       if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, dx, dy, dz, r, ops);
       break;
     }
+  }
+  if (!s.early_exit && (s.method == core::ParallaxMethod::Distance || s.method == core::ParallaxMethod::Cone)) {
+    // A fixed-length loop: the iterations after the hit still read the map (and find
+    // the point where it is).
+    const int idle = s.max_iterations - std::min(s.max_iterations, r.iterations);
+    r.iterations += idle, r.fetches += idle;
+    if (ops) *ops += (s.method == core::ParallaxMethod::Cone ? kOpsCone : kOpsSphere) * uint64_t(idle);
   }
   r.x = x, r.y = y;
   if (ops) *ops += kOpsOut;
@@ -160,8 +182,7 @@ bool ParallaxKernel::needed(const core::Scene& scene) {
   return false;
 }
 
-ParallaxKernel::ParallaxKernel(const core::Scene& scene) : scene_(scene), width_(scene.camera.width) {
-  iteration_layer_.assign(size_t(scene.camera.width) * size_t(scene.camera.height), 0.0f);
+ParallaxKernel::ParallaxKernel(const core::Scene& scene) : scene_(scene) {
   maps_.resize(scene.materials.size());
   for (const auto& o : scene.objects) {
     const core::Material& m = scene.materials[size_t(o.material)];
@@ -191,13 +212,16 @@ void ParallaxKernel::process(SpanPacket& p) {
     u_w += t.uv[0].ax, v_w += t.uv[1].ax;
     for (int k = 0; k < 3; ++k) e_w[k] += t.eye_t[k].ax;
     ParallaxTrace r;
-    if (t.parallax_frame) r = trace_parallax(m.parallax, maps, u * W - 0.5f, (1 - v) * H - 0.5f, a, b, c, &ops_);
+    // The entry brought into the map's first tile (far tiled uv keeps its precision);
+    // the shift found is added to the uv as it came.
+    float x0 = u * W - 0.5f, y0 = (1 - v) * H - 0.5f;
+    x0 -= W * std::floor(x0 / W), y0 -= H * std::floor(y0 / H);
+    if (t.parallax_frame) r = trace_parallax(m.parallax, maps, x0, y0, a, b, c, &ops_);
     const bool moved = r.iterations > 0;
-    p.uvp[0][i] = moved ? (r.x + 0.5f) / W : u;
-    p.uvp[1][i] = moved ? 1 - (r.y + 0.5f) / H : v;
+    p.uvp[0][i] = moved ? u + (r.x - x0) / W : u;
+    p.uvp[1][i] = moved ? v - (r.y - y0) / H : v;
     p.iterations[i] = float(r.iterations);
     iterations += uint64_t(r.iterations);
-    iteration_layer_[size_t(p.y) * size_t(width_) + size_t(p.x0 + i)] = float(r.iterations);
   }
   ops_ += Ops{/*add*/ 5, /*mul*/ 5} * uint64_t(p.count);  // uv and the tangent-space eye vector, per pixel
   if (p.count > 0) ops_ += Ops{/*add*/ 10, /*mul*/ 10};   // five plane seeds

@@ -15,7 +15,8 @@
 // distance and cone skip empty space, then walk the last cells with the exact per-cell
 // test (core::march_cells) — the same finish for both, so that their iteration counts
 // differ only by the skipping. Iterations: one per map or height read of the loop (a
-// cell test counts one, with four texel fetches).
+// cell test counts one, with four texel fetches). Without early exit (parallax.early_exit
+// = false) a pixel pays the loop's full length: every layer, or max_iterations.
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,6 +41,7 @@ struct ParallaxTrace {
   float x = 0, y = 0;  // where the ray meets the relief, in texels (tracer space)
   int iterations = 0;
   int fetches = 0;     // texels read
+  int skips = 0;       // distance, cone: the iterations that skipped empty space (the rest tested cells)
 };
 // Below this distance to the relief (voxels), skipping stops and the exact cells finish.
 constexpr float kParallaxNear = 0.5f;
@@ -62,10 +64,7 @@ class ParallaxKernel {
   uint64_t work(const SpanPacket& p) const { return last_iterations_ > 0 ? last_iterations_ : uint64_t(p.count); }
   bool bypass(const SpanPacket& p) const { return p.tri->material->path != core::ShadingPath::Parallax; }
 
-  const core::Scene& scene() const { return scene_; }
   double precompute_seconds() const { return precompute_s_; }
-  // Iterations per pixel of the last packet drawn there (the EXR's parallax.iterations).
-  const std::vector<float>& iteration_layer() const { return iteration_layer_; }
   uint64_t iterations() const { return iterations_; }
 
   void set_capture(bool) {}
@@ -77,9 +76,7 @@ class ParallaxKernel {
 
  private:
   const core::Scene& scene_;
-  int width_ = 0;
   std::vector<std::unique_ptr<ParallaxMaps>> maps_;  // by material index
-  std::vector<float> iteration_layer_;
   uint64_t iterations_ = 0, last_iterations_ = 0;
   double precompute_s_ = 0;
   Ops ops_;

@@ -87,11 +87,6 @@ void fill_counts(RenderResult& r, const Kernels& k) {
   }
 }
 
-// The parallax tracer's iterations per pixel, as a layer of the frame.
-void add_parallax_layer(RenderResult& r, const Kernels& k) {
-  if (k.parallax && ParallaxKernel::needed(k.parallax->scene()))
-    r.frame.add("parallax.iterations") = k.parallax->iteration_layer();
-}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -246,7 +241,6 @@ RenderResult render_loop(const core::Scene& scene, const Inspect& inspect) {
   if (k.texel_project) report("texel_project", k.texel_project->ops());
   fill_counts(r, k);
   r.frame = std::move(k.framebuffer.frame());
-  add_parallax_layer(r, k);
   return r;
 }
 
@@ -285,7 +279,6 @@ RenderResult render_systemc(const core::Scene& scene, const Inspect& inspect) {
   for (const auto& b : r.blocks)
     if (b.name == "framebuffer") r.pixels_shaded = b.stats.pixels;
   r.frame = std::move(k.framebuffer.frame());
-  add_parallax_layer(r, k);
   return r;
 }
 
