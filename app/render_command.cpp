@@ -148,6 +148,14 @@ Command add_render_command(CLI::App& app) {
               throw core::InputError("--vcd", inspect.vcd, "this build has tracing compiled out (SHADETLM_TRACING=OFF)");
             if (opt->engine == "loop" && (!inspect.vcd.empty() || !inspect.timeline.empty()))
               throw core::InputError("--engine", "loop", "the plain loop has no time: waveforms and timelines need systemc");
+            // Checked before the simulation: nothing may throw after sc_start in normal
+            // course (under ASan, unwinding past SystemC's coroutines is not supported).
+            if (!opt->heat_map.empty() &&
+                std::none_of(scene.objects.begin(), scene.objects.end(), [&](const core::Object& o) {
+                  return scene.materials[size_t(o.material)].path == core::ShadingPath::Parallax;
+                }))
+              throw core::InputError("--heat-map", opt->heat_map,
+                                     "the scene has no parallax material: no iterations to map");
             const std::string gtkw = inspect.vcd.empty() ? "" : inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw";
             check_writable(opt->output, "--output");
             check_writable(opt->preview, "--preview");
