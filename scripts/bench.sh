@@ -3,7 +3,8 @@
 #  1. wall time of the SystemC pipeline against the same kernels in a plain loop,
 #     measured in one process (ratio, ns per shaded pixel) on the 1920×1080 scene;
 #  2. instructions per shaded pixel from callgrind (repeatable, unlike seconds),
-#     counted inside the render only (not scene loading or file output), for the
+#     counted inside the render only (not scene loading, the maps the kernels
+#     precompute when they are built — reported as precompute_s — or file output), for the
 #     pipeline and for the loop: on a smaller frame of the same scene, and on the
 #     leanest Phong configuration.
 # Usage: scripts/bench.sh [SCENE] [extra --set arguments ...]
@@ -31,8 +32,8 @@ echo "== instructions per shaded pixel (callgrind) =="
 # The render functions by their full signatures: a wildcard would also match the loop's
 # lambdas (render_loop(...)::{lambda...}), and callgrind toggles collection off again on
 # entering them.
-declare -A render_fn=([systemc]='modules::render_systemc(core::Scene const&, modules::Inspect const&)'
-                      [loop]='modules::render_loop(core::Scene const&, modules::Inspect const&)')
+declare -A render_fn=([systemc]='modules::run_systemc(modules::Kernels&, modules::Options const&, modules::Inspect const&)'
+                      [loop]='modules::run_loop(modules::Kernels&, modules::Options const&, modules::Inspect const&)')
 count() {  # count LABEL SCENE RESOLUTION
   local label=$1 file=$2 res=$3
   for engine in systemc loop; do

@@ -99,25 +99,44 @@ class BlockInfo {
   uint32_t track_ = 0;
 };
 
-// Forwards a transaction through `socket` with the delay annotation of `cycle`.
-template <class Socket>
-void forward(Socket& socket, tlm::tlm_generic_payload& trans, uint64_t cycle, const sc_core::sc_time& period) {
-  if (socket.size() == 0) return;  // the last block
+// Forwards a transaction to `next` (a bound socket's interface; none after the last
+// block) with the delay annotation of `cycle`.
+inline void forward(tlm::tlm_fw_transport_if<>* next, tlm::tlm_generic_payload& trans, uint64_t cycle,
+                    const sc_core::sc_time& period) {
+  if (!next) return;  // the last block
   const sc_core::sc_time at = period * double(cycle), now = sc_core::sc_time_stamp();
   sc_core::sc_time delay = at > now ? at - now : sc_core::SC_ZERO_TIME;
-  socket->b_transport(trans, delay);
+  next->b_transport(trans, delay);
 }
+template <class Socket>
+void forward(Socket& socket, tlm::tlm_generic_payload& trans, uint64_t cycle, const sc_core::sc_time& period) {
+  forward(socket.size() > 0 ? socket.operator->() : nullptr, trans, cycle, period);
+}
+
+// A block's packet input: a plain TLM-2.0 target socket bound to the block, which
+// implements the forward interface itself — one virtual call a packet. (tlm_utils'
+// simple_target_socket adds a callback hop of about 30 instructions a packet and block,
+// 4 % of the Phong path's run: docs/performance.md.) Blocking transport only.
+class PacketTarget : public tlm::tlm_fw_transport_if<> {
+ public:
+  tlm::tlm_sync_enum nb_transport_fw(tlm::tlm_generic_payload&, tlm::tlm_phase&, sc_core::sc_time&) override {
+    SC_REPORT_ERROR("shadetlm", "the blocks take blocking transport (b_transport) only");
+    return tlm::TLM_COMPLETED;
+  }
+  bool get_direct_mem_ptr(tlm::tlm_generic_payload&, tlm::tlm_dmi&) override { return false; }
+  unsigned int transport_dbg(tlm::tlm_generic_payload&) override { return 0; }
+};
 
 // The SystemC module around a span kernel: packets in, kernel, packets out.
 template <class Kernel>
-class Stage : public sc_core::sc_module, public BlockInfo {
+class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
  public:
-  tlm_utils::simple_target_socket<Stage> in;
+  tlm::tlm_target_socket<32> in;
   tlm_utils::simple_initiator_socket_optional<Stage> out;  // unbound at the last block
 
   Stage(sc_core::sc_module_name name, Kernel& kernel, Timing timing, sc_core::sc_time period)
       : sc_core::sc_module(name), in("in"), out("out"), kernel_(kernel), schedule_(timing), period_(period) {
-    in.register_b_transport(this, &Stage::b_transport);
+    in.bind(*this);
   }
 
   std::string block_name() const override { return basename(); }
@@ -131,16 +150,25 @@ class Stage : public sc_core::sc_module, public BlockInfo {
   Schedule& schedule() override { return schedule_; }
 
  private:
-  void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
+  // The next block's interface, once bound (what out-> returns, without the port's
+  // checks on every packet).
+  void end_of_elaboration() override { next_ = out.size() > 0 ? out.operator->() : nullptr; }
+
+  void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) override {
     SpanPacket& p = *reinterpret_cast<SpanPacket*>(trans.get_data_ptr());
     if (kernel_.bypass(p)) {
       // Through the bypass wire: no work, no cycles; the packet goes on with the time
-      // annotation it came with.
+      // annotation it came with. Kept this short (a tail call, the work in a function
+      // of its own) because every packet crosses every elaborated block.
       ++stats_.bypassed;
-      if (out.size() > 0) out->b_transport(trans, delay);
       trans.set_response_status(tlm::TLM_OK_RESPONSE);
+      if (next_) next_->b_transport(trans, delay);
       return;
     }
+    work(trans, p);
+  }
+
+  [[gnu::noinline]] void work(tlm::tlm_generic_payload& trans, SpanPacket& p) {
     if (!kTracing || (!tracer_ && !timeline_)) {  // nothing inspected: the fast path
       kernel_.process(p);
       ++stats_.packets;
@@ -158,8 +186,8 @@ class Stage : public sc_core::sc_module, public BlockInfo {
       if (timeline_ && kept)
         timeline_->add(track_, schedule_.last_start(), schedule_.last_busy(), uint32_t(p.count), p.tri->id);
     }
-    forward(out, trans, p.cycle, period_);
     trans.set_response_status(tlm::TLM_OK_RESPONSE);
+    forward(next_, trans, p.cycle, period_);
   }
 
   // Pixel i leaves at the packet's first result plus its share of the packet's busy
@@ -179,6 +207,7 @@ class Stage : public sc_core::sc_module, public BlockInfo {
   Schedule schedule_;
   sc_core::sc_time period_;
   BlockStats stats_;
+  tlm::tlm_fw_transport_if<>* next_ = nullptr;
 };
 
 }  // namespace modules

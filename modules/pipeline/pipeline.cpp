@@ -197,6 +197,10 @@ class Top : public sc_core::sc_module {
 RenderResult render_loop(const core::Scene& scene, const Inspect& inspect) {
   const Options o = read_options(scene);
   Kernels k(scene, o);
+  return run_loop(k, o, inspect);
+}
+
+RenderResult run_loop(Kernels& k, const Options& o, const Inspect& inspect) {
   if (inspect.progress) k.setup.set_progress(inspect.progress);
   RenderResult r;
   r.engine = "loop";
@@ -247,8 +251,13 @@ RenderResult render_loop(const core::Scene& scene, const Inspect& inspect) {
 RenderResult render_systemc(const core::Scene& scene, const Inspect& inspect) {
   const Options o = read_options(scene);
   Kernels k(scene, o);
+  return run_systemc(k, o, inspect);
+}
+
+RenderResult run_systemc(Kernels& k, const Options& o, const Inspect& inspect) {
   if (inspect.progress) k.setup.set_progress(inspect.progress);
-  Top top("shadetlm", k, o, inspect, scene.camera.width, scene.camera.height);
+  const core::Camera& camera = k.setup.scene().camera;
+  Top top("shadetlm", k, o, inspect, camera.width, camera.height);
   // One quantum of 10 000 cycles: the source yields rarely, and never per pixel.
   tlm_utils::tlm_quantumkeeper::set_global_quantum(sc_core::sc_time(1e4 / o.clock_mhz, sc_core::SC_US));
   RenderResult r;

@@ -117,6 +117,11 @@ RenderResult render_loop(const core::Scene& scene, const Inspect& inspect = {});
 // Elaborates and simulates the SystemC pipeline: SystemC elaborates once per process,
 // so call this at most once per process.
 RenderResult render_systemc(const core::Scene& scene, const Inspect& inspect = {});
+// The same on kernels already built: the frame's work alone, without the maps the
+// kernels precompute when they are built (RenderResult::precompute_s). scripts/bench.sh
+// counts instructions inside these.
+RenderResult run_loop(Kernels& kernels, const Options& options, const Inspect& inspect = {});
+RenderResult run_systemc(Kernels& kernels, const Options& options, const Inspect& inspect = {});
 
 // Writes a GTKWave save file for `vcd`: the blocks' signals grouped in pipeline
 // order, real values drawn as analog steps.

@@ -53,6 +53,7 @@ class SetupKernel {
   uint64_t triangles_out() const { return triangles_out_; }
   // The point lights, in the order of TriangleSetup::l (slot k is light point_lights()[k]).
   const std::vector<int>& point_lights() const { return point_lights_; }
+  const core::Scene& scene() const { return scene_; }
 
  private:
   struct Vertex {  // a vertex of a clipped piece: exact (double) from the clipper
