@@ -13,17 +13,5 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
 "$root/scripts/build.sh" >/dev/null
-assets=$root/out/assets
-real=$assets/moon.png
-if [[ ! -s $real ]]; then
-  mkdir -p "$assets/pkg"
-  if (cd "$assets/pkg" && apt-get download -q python3-skimage >/dev/null 2>&1); then
-    dpkg -x "$assets"/pkg/python3-skimage_*.deb "$assets/pkg/x"
-    cp "$(find "$assets/pkg/x" -name moon.png | head -1)" "$real"
-    rm -rf "$assets/pkg"
-  else
-    echo "parallax-report.sh: python3-skimage could not be downloaded; no real height map" >&2
-    real=""
-  fi
-fi
+real=$("$root/scripts/skimage-asset.sh" moon.png)
 exec python3 "$root/scripts/parallax-report.py" "$root/build/app/shadetlm" "$root" "$real"

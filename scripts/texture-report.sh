@@ -10,17 +10,5 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
 "$root/scripts/build.sh" >/dev/null
-assets=$root/out/assets
-photo=$assets/astronaut.png
-if [[ ! -s $photo ]]; then
-  mkdir -p "$assets/pkg"
-  if (cd "$assets/pkg" && apt-get download -q python3-skimage >/dev/null 2>&1); then
-    dpkg -x "$assets"/pkg/python3-skimage_*.deb "$assets/pkg/x"
-    cp "$(find "$assets/pkg/x" -name astronaut.png | head -1)" "$photo"
-    rm -rf "$assets/pkg"
-  else
-    echo "texture-report.sh: python3-skimage could not be downloaded; no photograph" >&2
-    photo=""
-  fi
-fi
+photo=$("$root/scripts/skimage-asset.sh" astronaut.png)
 exec python3 "$root/scripts/texture-report.py" "$root/build/app/shadetlm" "$photo" "$@"

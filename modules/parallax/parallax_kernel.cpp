@@ -206,7 +206,7 @@ void ParallaxKernel::process(SpanPacket& p) {
   uint64_t iterations = 0;
   for (int i = 0; i < p.count; ++i) {
     const float u = u_w * p.w[i], v = v_w * p.w[i];
-    captured_[0][i] = u, captured_[1][i] = v;
+    if (capture_) captured_[0][i] = u, captured_[1][i] = v;
     // d = P − eye in tangent space: the view ray's direction.
     const float a = -e_w[0] * p.w[i], b = -e_w[1] * p.w[i], c = -e_w[2] * p.w[i];
     u_w += t.uv[0].ax, v_w += t.uv[1].ax;

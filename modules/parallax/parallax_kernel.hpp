@@ -67,7 +67,7 @@ class ParallaxKernel {
   double precompute_seconds() const { return precompute_s_; }
   uint64_t iterations() const { return iterations_; }
 
-  void set_capture(bool) {}
+  void set_capture(bool on) { capture_ = on; }
   static std::vector<std::string> trace_names() { return {"u", "v", "u_out", "v_out", "iterations"}; }
   void trace(const SpanPacket& p, int i, double* out) const {
     out[0] = captured_[0][i], out[1] = captured_[1][i];
@@ -80,7 +80,8 @@ class ParallaxKernel {
   uint64_t iterations_ = 0, last_iterations_ = 0;
   double precompute_s_ = 0;
   Ops ops_;
-  float captured_[2][kSpanMax] = {};
+  bool capture_ = false;
+  float captured_[2][kSpanMax] = {};  // u, v in, for the waveforms
 };
 
 }  // namespace modules
