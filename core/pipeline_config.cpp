@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "core/input_error.hpp"
+#include "core/number_format.hpp"
 
 namespace core {
 
@@ -14,7 +15,8 @@ const std::vector<SettingSpec>& pipeline_settings() {
   // them. docs/configuration.md documents each one (a test checks that it does).
   static std::vector<SettingSpec> table = {
       {"clock_mhz", 500.0, {}, 1, 100000, "clock of every block, for simulated time"},
-      {"number_format", "float32", {"float32"}, 0, 0, "arithmetic of the datapaths"},
+      {"number_format", "float32", {}, 0, 0,
+       "number format of every datapath: float32, float16 or fixed:I.F (docs/numerical-stability.md)", true},
       {"elaborate", "needed", {"needed", "all"}, 0, 0,
        "elaborate the blocks some material needs, or every block (to measure what skipping saves)"},
       {"normal_interp.mode", "perspective", {"affine", "perspective"}, 0, 0,
@@ -51,7 +53,20 @@ const std::vector<SettingSpec>& pipeline_settings() {
     return true;
   }();
   (void)timing_added;
+  static const bool formats_added = [] {
+    for (const auto& block : formatted_blocks())
+      table.push_back({block + ".format", "default", {}, 0, 0,
+                       "number format of the block's datapath (default: pipeline.number_format)", true});
+    return true;
+  }();
+  (void)formats_added;
   return table;
+}
+
+const std::vector<std::string>& formatted_blocks() {
+  static const std::vector<std::string> blocks = {"normal_interp", "normalize",     "vector_interp",
+                                                  "lighting",      "texel_project", "parallax"};
+  return blocks;
 }
 
 namespace {
@@ -98,6 +113,11 @@ PipelineConfig PipelineConfig::from_json(const json& section, const std::string&
         throw InputError(file, field,
                          "unknown value \"" + value.get<std::string>() + "\" (one of: " + list + ")");
       }
+      if (spec->number_format && !(key != "number_format" && value == "default")) try {
+          NumberFormat::parse(value.get<std::string>());
+        } catch (const std::invalid_argument& e) {
+          throw InputError(file, field, e.what());
+        }
     } else if (spec->fallback.is_boolean()) {
       if (!value.is_boolean()) throw InputError(file, field, "expected true or false");
     } else if (spec->fallback.is_number_integer()) {
@@ -131,6 +151,11 @@ bool PipelineConfig::boolean(const std::string& key) const { return get(key).get
 const std::string& PipelineConfig::string(const std::string& key) const {
   get(key);
   return strings_.at(key);
+}
+
+NumberFormat PipelineConfig::format(const std::string& block) const {
+  const std::string& name = string(block + ".format");
+  return NumberFormat::parse(name == "default" ? string("number_format") : name);
 }
 
 json PipelineConfig::resolved() const {

@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/number_format.hpp"
+
 namespace core {
 
 struct SettingSpec {
@@ -17,7 +19,11 @@ struct SettingSpec {
   std::vector<std::string> choices;  // allowed strings (empty: any of the type)
   double min = 0, max = 0;     // numeric range (when min < max)
   std::string doc;             // one line for docs/configuration.md
+  bool number_format = false;  // a string naming a number format (core::NumberFormat)
 };
+
+// The blocks whose datapaths run in a number format of their own (`<block>.format`).
+const std::vector<std::string>& formatted_blocks();
 
 const std::vector<SettingSpec>& pipeline_settings();
 
@@ -30,6 +36,9 @@ class PipelineConfig {
   int integer(const std::string& key) const;
   const std::string& string(const std::string& key) const;
   bool boolean(const std::string& key) const;
+  // The number format of a block of formatted_blocks(): `<block>.format`, or
+  // number_format where that is "default".
+  NumberFormat format(const std::string& block) const;
 
   // Every setting with its resolved value, as a flat JSON object.
   nlohmann::json resolved() const;

@@ -112,6 +112,24 @@ for path in ["bump-classic", "bump-tangent", "bump-square", "bump-object"]:
                       "full-depth steps in the height map, " + path,
                       textures={"steps": {"type": "steps", "size": [64, 64], "cells": 4, "levels": 2}},
                       materials={"m": {"height_map": "steps", "height_scale": 1.0, "path": path}}))
+# Full-depth steps under the parallax tracer, at a low view (long rays, many cells).
+for method in ["relief", "distance"]:
+    made.append(scene("steps-parallax-" + method, {"position": [0, 0.35, 2.0], "target": [0, 0, 0],
+                                                  "resolution": [192, 144], "local_viewer": True},
+                      [{"shape": "plane", "size": [2, 2], "material": "m", "transform": {"rotate": [-90, 0, 0]}}],
+                      "full-depth steps in the height map, parallax " + method + " at a low view",
+                      textures={"steps": {"type": "steps", "size": [64, 64], "cells": 4, "levels": 2},
+                                "t": {"type": "checker", "size": [64, 64], "cells": 8}},
+                      materials={"m": {"texture": "t", "height_map": "steps", "path": "parallax",
+                                       "parallax": {"method": method, "depth": 0.1}}}))
+# Object-space texturing (texel projection and splat weights) on a plane seen at 85°.
+made.append(scene("grazing-object-85", {"position": [0, 3 * math.cos(math.radians(85)), 3 * math.sin(math.radians(85))],
+                                        "target": [0, 0, 0], "resolution": [192, 144], "local_viewer": True},
+                  [{"shape": "plane", "size": [8, 8], "tessellation": [2, 2], "material": "m",
+                    "transform": {"rotate": [-90, 0, 0]}}],
+                  "texel projection and splat weights on a plane seen at 85° from its normal",
+                  textures={"t": {"type": "checker", "size": [64, 64], "cells": 8}},
+                  materials={"m": {"texture": "t", "path": "texture-object"}}))
 with open(os.path.join(OUT, "README.md"), "w") as f:
     f.write("# Stress scenes\n\nWritten by `scripts/make-stress-scenes.py` (edit it, not these files); "
             "rendered by `testbenches/test_stress.cpp`.\n\n| scene | stresses |\n|---|---|\n")

@@ -35,7 +35,7 @@ TEST_CASE("stress scenes: no NaN or infinity reaches a frame, and coverage is th
     const modules::RenderResult r = modules::render_loop(scene);
     const core::Frame ref = reference::to_frame(reference::render(scene));
     CHECK(nonfinite(r.frame) == 0);
-    CHECK(r.stats_json()["nonfinite_written"].get<uint64_t>() == 0);
+    CHECK(r.stats_json()["nonfinite_replaced"].get<uint64_t>() == 0);
     CHECK(nonfinite(ref) == 0);
     CHECK(r.frame.at("A") == ref.at("A"));
   }

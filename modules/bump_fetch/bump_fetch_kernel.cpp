@@ -70,7 +70,7 @@ const BumpFetchKernel::Map& BumpFetchKernel::build(const core::Scene& scene, con
   return *maps_.back();
 }
 
-void BumpFetchKernel::process(SpanPacket& p) {
+void BumpFetchKernel::fetch(SpanPacket& p) {
   const TriangleSetup& t = *p.tri;
   if (!t.bump_frame) {  // no tangent frame: the unperturbed normal (+z), no derivatives
     last_cycles_ = uint64_t(p.count);

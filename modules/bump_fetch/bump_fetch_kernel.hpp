@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "modules/common/number.hpp"
 #include "modules/common/packet.hpp"
 #include "modules/common/range.hpp"
 #include "modules/common/sampler.hpp"
@@ -30,7 +31,12 @@ class BumpFetchKernel {
   BumpFetchKernel(const core::Scene& scene, const Options& options);
   static bool needed(const core::Scene& scene);
 
-  void process(SpanPacket& p);
+  void process(SpanPacket& p) {
+    fetch(p);
+    for (int c = 0; c < 3; ++c) nonfinite_ += count_nonfinite(p.bump[c], p.count);
+  }
+  // float32 datapaths; the non-finite values among the block's outputs.
+  NumberStats numbers() const { return {"float32", nonfinite_, {}}; }
   const Ops& ops() const { return ops_; }
   uint64_t work(const SpanPacket&) const { return last_cycles_; }  // four texels a cycle
   bool bypass(const SpanPacket& p) const { return !core::bump_path(p.tri->material->path); }
@@ -65,6 +71,8 @@ class BumpFetchKernel {
   ValueRange uv_range_, fetched_range_;
   bool capture_ = false;
   float captured_[3][kSpanMax] = {};
+  void fetch(SpanPacket& p);
+  uint64_t nonfinite_ = 0;
 };
 
 }  // namespace modules

@@ -8,7 +8,7 @@ bool BumpPerturbKernel::needed(const core::Scene& scene) {
   return false;
 }
 
-void BumpPerturbKernel::process(SpanPacket& p) {
+void BumpPerturbKernel::perturb(SpanPacket& p) {
   const TriangleSetup& t = *p.tri;
   const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
   float x_w[3], y_w[3];

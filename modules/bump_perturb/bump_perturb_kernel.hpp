@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "modules/common/number.hpp"
 #include "modules/common/packet.hpp"
 #include "modules/common/range.hpp"
 
@@ -21,7 +22,12 @@ class BumpPerturbKernel {
   explicit BumpPerturbKernel(bool perspective) : perspective_(perspective) {}
   static bool needed(const core::Scene& scene);
 
-  void process(SpanPacket& p);
+  void process(SpanPacket& p) {
+    perturb(p);
+    for (int c = 0; c < 3; ++c) nonfinite_ += count_nonfinite(p.n[c], p.count);
+  }
+  // float32 datapaths; the non-finite values among the block's outputs.
+  NumberStats numbers() const { return {"float32", nonfinite_, {}}; }
   const Ops& ops() const { return ops_; }
   uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }
   bool bypass(const SpanPacket& p) const { return p.tri->material->path != core::ShadingPath::BumpClassic; }
@@ -46,6 +52,8 @@ class BumpPerturbKernel {
   ValueRange n_x_pv_range_, pu_x_n_range_, perturbed_range_;
   bool capture_ = false;
   float captured_[2][kSpanMax] = {};
+  void perturb(SpanPacket& p);
+  uint64_t nonfinite_ = 0;
 };
 
 }  // namespace modules

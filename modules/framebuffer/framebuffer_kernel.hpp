@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/frame.hpp"
+#include "modules/common/number.hpp"
 #include "modules/common/packet.hpp"
 
 namespace modules {

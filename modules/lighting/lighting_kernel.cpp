@@ -7,7 +7,7 @@
 
 namespace modules {
 
-LightingKernel::LightingKernel(const core::Scene& scene) {
+LightingKernel::LightingKernel(const core::Scene& scene, core::NumberFormat format) : numbers_(format) {
   for (int c = 0; c < 3; ++c) ambient_[c] = float(scene.ambient[c]);
   const glm::dvec3 view = -scene.camera.forward();
   for (const auto& l : scene.lights) {
@@ -40,42 +40,61 @@ Ops LightingKernel::ops_per_span() const {
 
 void LightingKernel::process(SpanPacket& p) {
   const core::Material& m = *p.tri->material;
+  const bool deferred = m.path == core::ShadingPath::TextureObject;
+  const bool textured = m.texture >= 0 && !deferred;
+  with_number_type(numbers_, [&](auto zero) { shade<decltype(zero)>(p); });
+  for (int c = 0; c < 3; ++c)
+    nonfinite_ += count_nonfinite(p.rgb[c], p.count) + (deferred ? count_nonfinite(p.spec[c], p.count) : 0);
+  ops_ += ops_per_pixel(textured) * uint64_t(p.count);
+  if (p.count > 0) ops_ += ops_per_span();
+}
+
+template <class T>
+void LightingKernel::shade(SpanPacket& p) {
+  const core::Material& m = *p.tri->material;
   // texture-object: the texture is splatted after the frame (texel_project), so the
   // ambient and diffuse factor D goes to rgb and the specular term S apart.
   const bool deferred = m.path == core::ShadingPath::TextureObject;
   const bool textured = m.texture >= 0 && !deferred;
-  const float shininess = float(m.shininess);
-  float ambient[3], kd[kMaxLights][3], ks[kMaxLights][3];
-  for (int c = 0; c < 3; ++c) ambient[c] = ambient_[c] * float(m.ambient[c]);
+  const float shininess = float(m.shininess);  // the power table's content
+  T ambient[3], kd[kMaxLights][3], ks[kMaxLights][3];
+  for (int c = 0; c < 3; ++c) ambient[c] = T(ambient_[c]) * T(float(m.ambient[c]));
   for (size_t k = 0; k < lights_.size(); ++k)
     for (int c = 0; c < 3; ++c) {
-      kd[k][c] = lights_[k].radiance[c] * float(m.diffuse[c]);
-      ks[k][c] = lights_[k].radiance[c] * float(m.specular[c]);
+      kd[k][c] = T(lights_[k].radiance[c]) * T(float(m.diffuse[c]));
+      ks[k][c] = T(lights_[k].radiance[c]) * T(float(m.specular[c]));
     }
-  // Lights outer, pixels inner: straight pixel loops over the packet's arrays, which
-  // the compiler vectorizes; each pixel's arithmetic is the formula above, in order.
+  // Lights outer, pixels inner: straight pixel loops over arrays, which the compiler
+  // vectorizes in float32; each pixel's arithmetic is the formula above, in order.
   const int count = p.count;
+  const T zero = T(0.0f);
+  // The sums: the packet's arrays in float32, registers of the format else.
+  T rgb_regs[3][kSpanMax], spec_regs[3][kSpanMax];
+  T(*rgb)[kSpanMax] = rgb_regs;
+  T(*spec)[kSpanMax] = spec_regs;
+  if constexpr (std::is_same_v<T, float>) rgb = p.rgb, spec = p.spec;
   for (int c = 0; c < 3; ++c)
-    for (int i = 0; i < count; ++i) p.rgb[c][i] = textured ? ambient[c] * p.tex[c][i] : ambient[c];
+    for (int i = 0; i < count; ++i) rgb[c][i] = textured ? ambient[c] * T(p.tex[c][i]) : ambient[c];
   if (deferred)
     for (int c = 0; c < 3; ++c)
-      for (int i = 0; i < count; ++i) p.spec[c][i] = 0;
-  float n_dot_l[kSpanMax], n_dot_h[kSpanMax];
+      for (int i = 0; i < count; ++i) spec[c][i] = zero;
+  T n_dot_l[kSpanMax], n_dot_h[kSpanMax];
   if (capture_ && lights_.empty())  // no light: nothing to show, not a stale value
     for (int i = 0; i < count; ++i) captured_[0][i] = captured_[1][i] = 0;
   // Fetched-normal bump paths light in the texture's space: L and H come per pixel.
   const bool in_space = core::fetches_normal(m.path);
   for (size_t k = 0; k < lights_.size(); ++k) {
     const Light& s = lights_[k];
+    const T l_const[3] = {T(s.l[0]), T(s.l[1]), T(s.l[2])}, h_const[3] = {T(s.h[0]), T(s.h[1]), T(s.h[2])};
     // N·L and N·H, with L and H from the packet or constant: one straight loop per case,
     // so that each vectorizes.
     auto dots = [&](auto l_varies, auto h_varies) {
       for (int i = 0; i < count; ++i) {
-        const float n[3] = {p.n[0][i], p.n[1][i], p.n[2][i]};
-        const float l[3] = {l_varies ? p.l[k][0][i] : s.l[0], l_varies ? p.l[k][1][i] : s.l[1],
-                            l_varies ? p.l[k][2][i] : s.l[2]};
-        const float h[3] = {h_varies ? p.h[k][0][i] : s.h[0], h_varies ? p.h[k][1][i] : s.h[1],
-                            h_varies ? p.h[k][2][i] : s.h[2]};
+        const T n[3] = {T(p.n[0][i]), T(p.n[1][i]), T(p.n[2][i])};
+        const T l[3] = {l_varies ? T(p.l[k][0][i]) : l_const[0], l_varies ? T(p.l[k][1][i]) : l_const[1],
+                        l_varies ? T(p.l[k][2][i]) : l_const[2]};
+        const T h[3] = {h_varies ? T(p.h[k][0][i]) : h_const[0], h_varies ? T(p.h[k][1][i]) : h_const[1],
+                        h_varies ? T(p.h[k][2][i]) : h_const[2]};
         n_dot_l[i] = dot3(n, l);
         n_dot_h[i] = dot3(n, h);
       }
@@ -87,29 +106,34 @@ void LightingKernel::process(SpanPacket& p) {
     else if (s.l_varies) dots(yes{}, no{});
     else dots(no{}, no{});
     if (capture_ && k == 0)
-      for (int i = 0; i < count; ++i) captured_[0][i] = n_dot_l[i], captured_[1][i] = n_dot_h[i];
+      for (int i = 0; i < count; ++i) captured_[0][i] = float(n_dot_l[i]), captured_[1][i] = float(n_dot_h[i]);
     // No highlight from a light behind the surface (and none where H is undefined).
     // Hardware looks the power up for every pixel (counted so); the model skips the
     // call whose result the select would discard.
     for (int i = 0; i < count; ++i)
-      n_dot_h[i] = n_dot_l[i] > 0 && n_dot_h[i] > 0 ? std::pow(n_dot_h[i], shininess) : 0.0f;
+      n_dot_h[i] = n_dot_l[i] > zero && n_dot_h[i] > zero ? pow_op(n_dot_h[i], shininess) : zero;
     if (deferred) {
       for (int c = 0; c < 3; ++c)
         for (int i = 0; i < count; ++i) {
-          p.rgb[c][i] += kd[k][c] * (n_dot_l[i] > 0 ? n_dot_l[i] : 0.0f);
-          p.spec[c][i] += ks[k][c] * n_dot_h[i];
+          rgb[c][i] += kd[k][c] * (n_dot_l[i] > zero ? n_dot_l[i] : zero);
+          spec[c][i] += ks[k][c] * n_dot_h[i];
         }
       continue;
     }
     for (int c = 0; c < 3; ++c)
       for (int i = 0; i < count; ++i) {
-        const float diffuse = n_dot_l[i] > 0 ? n_dot_l[i] : 0.0f;
-        const float d = textured ? kd[k][c] * p.tex[c][i] : kd[k][c];
-        p.rgb[c][i] += d * diffuse + ks[k][c] * n_dot_h[i];
+        const T diffuse = n_dot_l[i] > zero ? n_dot_l[i] : zero;
+        const T d = textured ? kd[k][c] * T(p.tex[c][i]) : kd[k][c];
+        rgb[c][i] += d * diffuse + ks[k][c] * n_dot_h[i];
       }
   }
-  ops_ += ops_per_pixel(textured) * uint64_t(p.count);
-  if (p.count > 0) ops_ += ops_per_span();
+  if constexpr (!std::is_same_v<T, float>) {
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < count; ++i) p.rgb[c][i] = float(rgb[c][i]);
+    if (deferred)
+      for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < count; ++i) p.spec[c][i] = float(spec[c][i]);
+  }
 }
 
 }  // namespace modules

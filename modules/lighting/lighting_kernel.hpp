@@ -10,18 +10,21 @@
 #include <string>
 #include <vector>
 
+#include "modules/common/number.hpp"
 #include "modules/common/packet.hpp"
 
 namespace modules {
 
 class LightingKernel {
  public:
-  explicit LightingKernel(const core::Scene& scene);
+  // Its datapaths are of `format` (pipeline.lighting.format); the colour leaves as float32.
+  explicit LightingKernel(const core::Scene& scene, core::NumberFormat format = {});
 
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
   uint64_t work(const SpanPacket& p) const { return uint64_t(p.count) * lights_.size(); }
   bool bypass(const SpanPacket&) const { return false; }
+  NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
 
   Ops ops_per_pixel(bool textured) const;
   Ops ops_per_span() const;
@@ -40,11 +43,15 @@ class LightingKernel {
     bool l_varies, h_varies;      // read from the packet, else the constants below
     float l[3], h[3];
   };
+  template <class T> void shade(SpanPacket& p);
+
   std::vector<Light> lights_;
   float ambient_[3];
   Ops ops_;
   bool capture_ = false;
   float captured_[2][kSpanMax] = {};
+  NumberContext numbers_;
+  uint64_t nonfinite_ = 0;
 };
 
 }  // namespace modules

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "modules/common/number.hpp"
 #include "modules/common/packet.hpp"
 #include "modules/common/range.hpp"
 
@@ -25,7 +26,9 @@ class NormalInterpKernel {
  public:
   // reseed: 0 walks the whole triangle from its seed (the paper's); −1 takes every row
   // start from the plane; N > 0 also every N pixels along the row (normal_interp.reseed).
-  explicit NormalInterpKernel(int reseed = 0) : reseed_(reseed) {}
+  // The walker's adders and registers are of `format` (pipeline.normal_interp.format):
+  // the increments from setup are rounded to it once per triangle.
+  explicit NormalInterpKernel(int reseed = 0, core::NumberFormat format = {}) : reseed_(reseed), numbers_(format) {}
   // A re-seed: a0 + ax·dx + ay·dy for three components.
   static constexpr Ops kOpsPerReseed{/*add*/ 6, /*mul*/ 6};
   void process(SpanPacket& p);
@@ -37,6 +40,7 @@ class NormalInterpKernel {
   // would discard it): their packets do not walk.
   bool bypass(const SpanPacket& p) const { return core::fetches_normal(p.tri->material->path); }
   Ranges ranges() const { return {{"n", range_}}; }
+  NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
   // Waveforms: the interpolated (not yet normalized) normal, N or N/w.
   void set_capture(bool) {}
   static std::vector<std::string> trace_names() { return {"n_x", "n_y", "n_z"}; }
@@ -45,21 +49,18 @@ class NormalInterpKernel {
   }
 
  private:
-  void step(float n[3], const float d[3]) {
-    n[0] += d[0];
-    n[1] += d[1];
-    n[2] += d[2];
-    ++steps_;
-  }
+  template <class T> void walk(SpanPacket& p);
 
   int reseed_ = 0;
   uint32_t triangle_ = ~0u;
-  int row_y_ = 0, row_x_ = 0;  // the walker's row and row start
-  float row_n_[3] = {0, 0, 0}; // the normal there
-  int x_ = 0;                  // the walker's position along the row
-  float n_[3] = {0, 0, 0};     // the normal there
+  int row_y_ = 0, row_x_ = 0;   // the walker's row and row start
+  double row_n_[3] = {0, 0, 0}; // the normal there (a value of the format, held exactly)
+  int x_ = 0;                   // the walker's position along the row
+  double n_[3] = {0, 0, 0};     // the normal there
   uint64_t steps_ = 0, last_steps_ = 0;
   Ops ops_;
+  NumberContext numbers_;
+  uint64_t nonfinite_ = 0;
   ValueRange range_;  // the walked normal, N or N/w
 };
 

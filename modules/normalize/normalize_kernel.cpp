@@ -1,6 +1,7 @@
 #include "modules/normalize/normalize_kernel.hpp"
 
 #include <stdexcept>
+#include <type_traits>
 
 namespace modules {
 
@@ -32,7 +33,6 @@ Ops normalize_ops_per_span(NormalizeMode mode) {
 
 void NormalizeKernel::process(SpanPacket& p) {
   const TriangleSetup& t = *p.tri;
-  const float dh[3] = {t.n[0].ax, t.n[1].ax, t.n[2].ax};
   if (capture_)
     for (int i = 0; i < p.count; ++i) {
       const float n[3] = {p.n[0][i], p.n[1][i], p.n[2][i]};
@@ -43,9 +43,26 @@ void NormalizeKernel::process(SpanPacket& p) {
   const NormalizeMode mode = mode_ == NormalizeMode::ForwardDifference && core::bump_path(t.material->path)
                                  ? NormalizeMode::Exact
                                  : mode_;
-  normalize_span(p.n[0], p.n[1], p.n[2], p.count, dh, t.c, mode);
+  with_number_type(numbers_, [&](auto zero) { normalize_as<decltype(zero)>(p, mode); });
+  for (int c = 0; c < 3; ++c) nonfinite_ += count_nonfinite(p.n[c], p.count);
   ops_ += normalize_ops_per_pixel(mode) * uint64_t(p.count);
   if (p.count > 0) ops_ += normalize_ops_per_span(mode);
+}
+
+template <class T>
+void NormalizeKernel::normalize_as(SpanPacket& p, NormalizeMode mode) {
+  const TriangleSetup& t = *p.tri;
+  const T dh[3] = {T(t.n[0].ax), T(t.n[1].ax), T(t.n[2].ax)};
+  if constexpr (std::is_same_v<T, float>) {  // in place
+    normalize_span(p.n[0], p.n[1], p.n[2], p.count, dh, T(t.c), mode);
+  } else {  // the packet's float32 wires rounded to the format, and back
+    T n[3][kSpanMax];
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < p.count; ++i) n[c][i] = T(p.n[c][i]);
+    normalize_span(n[0], n[1], n[2], p.count, dh, T(t.c), mode);
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < p.count; ++i) p.n[c][i] = float(n[c][i]);
+  }
 }
 
 }  // namespace modules

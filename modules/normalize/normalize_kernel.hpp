@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "modules/common/number.hpp"
 #include "modules/common/packet.hpp"
 
 namespace modules {
@@ -133,12 +134,15 @@ Ops normalize_ops_per_span(NormalizeMode mode);
 
 class NormalizeKernel {
  public:
-  explicit NormalizeKernel(NormalizeMode mode) : mode_(mode) {}
+  // The radicand and inverse square root datapaths are of `format`
+  // (pipeline.normalize.format).
+  explicit NormalizeKernel(NormalizeMode mode, core::NumberFormat format = {}) : mode_(mode), numbers_(format) {}
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
   NormalizeMode mode() const { return mode_; }
   uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }
   bool bypass(const SpanPacket&) const { return false; }
+  NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
   // Waveforms: the radicand |N|² of the incoming normal (kept only for traced
   // packets) and the normalized normal.
   void set_capture(bool on) { capture_ = on; }
@@ -149,8 +153,12 @@ class NormalizeKernel {
   }
 
  private:
+  template <class T> void normalize_as(SpanPacket& p, NormalizeMode mode);
+
   NormalizeMode mode_;
   Ops ops_;
+  NumberContext numbers_;
+  uint64_t nonfinite_ = 0;
   bool capture_ = false;
   float radicand_[kSpanMax] = {};
 };

@@ -38,47 +38,60 @@ constexpr Ops kOpsCone{/*add*/ 5, /*mul*/ 3, /*div*/ 2, 0, 0, 0, /*fetch*/ 1};  
 constexpr Ops kOpsCell{/*add*/ 16, /*mul*/ 18, /*div*/ 2, /*sqrt*/ 1, 0, 0, /*fetch*/ 4};  // exact cell test
 constexpr Ops kOpsOut{/*add*/ 4, /*mul*/ 2};  // texels back to uv
 
-float height_at(const core::HeightField& f, float x, float y) { return core::bilinear_height<float>(f, x, y); }
+// The texture unit's bilinear height at (x, y), in float32 like every texture read; the
+// tracer takes it into its format.
+template <class T>
+T height_at(const core::HeightField& f, T x, T y) {
+  return T(core::bilinear_height<float>(f, float(x), float(y)));
+}
 
-// The exact cells from (x, y, z) on: the finish of the skipping tracers.
-void finish_cells(const core::ParallaxSettings& s, const ParallaxMaps& m, float& x, float& y, float& z, float dx,
-                  float dy, float dz, ParallaxTrace& r, Ops* ops) {
+// The exact cells from (x, y, z) on: the finish of the skipping tracers. The per-cell
+// quadratic (core::march_cells, shared with the map builders) runs in float32 whatever
+// the tracer's format; its result is taken back into the format.
+template <class T>
+void finish_cells(const core::ParallaxSettings& s, const ParallaxMaps& m, T& x, T& y, T& z, T dx, T dy, T dz,
+                  ParallaxTrace& r, Ops* ops) {
   const int budget = std::max(1, s.max_iterations - r.iterations);
-  const auto march = core::march_cells<float>(m.field, x, y, z, dx, dy, dz, float(m.slices), budget);
-  x += march.t * dx, y += march.t * dy, z += march.t * dz;
+  const float fdx = float(dx), fdy = float(dy), fdz = float(dz);
+  const auto march =
+      core::march_cells<float>(m.field, float(x), float(y), float(z), fdx, fdy, fdz, float(m.slices), budget);
+  const T t = T(march.t);
+  x += t * dx, y += t * dy, z += t * dz;
   r.iterations += march.cells;
   r.fetches += 4 * march.cells;
   if (ops) *ops += kOpsCell * uint64_t(march.cells);
 }
 
-}  // namespace
-
-ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0, float y0, float a,
-                             float b, float c, Ops* ops) {
+// The tracer in the number type T (pipeline.parallax.format): the ray, the layer
+// search, the skipping steps and the uv out.
+template <class T>
+ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0f, float y0f, float af,
+                       float bf, float cf, Ops* ops) {
   ParallaxTrace r;
-  r.x = x0, r.y = y0;
-  if (!(s.depth > 0) || !(c < 0) || !std::isfinite(a) || !std::isfinite(b)) return r;
+  r.x = x0f, r.y = y0f;
+  if (!(s.depth > 0) || !(cf < 0) || !std::isfinite(af) || !std::isfinite(bf)) return r;
   const core::HeightField& f = m.field;
-  const float W = float(f.width), H = float(f.height), D = float(m.slices);
+  const T W = T(float(f.width)), H = T(float(f.height)), D = T(float(m.slices));
+  const T x0 = T(x0f), y0 = T(y0f), a = T(af), b = T(bf), c = T(cf), one = T(1.0f), zero = T(0.0f);
   if (ops) *ops += kOpsRay;
   // The ray in the tracer's space (core/parallax_map.hpp): x along u, y down the rows,
   // z in slices of the depth.
-  float dx = a * W, dy = -b * H, dz = c * D / float(s.depth);
-  const float scale = 1.0f / std::sqrt(dx * dx + dy * dy + dz * dz);
-  if (!std::isfinite(scale) || scale == 0) return r;
+  T dx = a * W, dy = -b * H, dz = c * D / T(float(s.depth));
+  const T scale = one / sqrt_op(dx * dx + dy * dy + dz * dz);
+  if (!std::isfinite(float(scale)) || scale == zero) return r;
   dx *= scale, dy *= scale, dz *= scale;  // unit in the tracer's space
   // A ray this close to the surface would run over 10⁶ texels: treated as parallel.
-  if (-dz < 1e-6f) return r;
-  float x = x0, y = y0, z = D;
+  if (-dz < T(1e-6f) || !(dz < zero)) return r;
+  T x = x0, y = y0, z = D;
 
   switch (s.method) {
     case core::ParallaxMethod::Offset: {
       // T = T0 + depth·(1 − h(T0))·v̂xy with v̂ the unit physical direction: no division
       // by v̂z, so the shift stays within the depth at grazing views.
-      const float h = height_at(f, x0, y0);
-      const float inv = 1.0f / std::sqrt(a * a + b * b + c * c);
-      const float shift = float(s.depth) * (1 - h) * inv;
-      r.x = x0 + shift * a * W, r.y = y0 - shift * b * H;
+      const T h = height_at(f, x0, y0);
+      const T inv = one / sqrt_op(a * a + b * b + c * c);
+      const T shift = T(float(s.depth)) * (one - h) * inv;
+      r.x = float(x0 + shift * a * W), r.y = float(y0 - shift * b * H);
       r.iterations = 1, r.fetches = 4;
       if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 6, 0, 0, /*rsqrt*/ 1} + kOpsOut;
       return r;
@@ -87,13 +100,14 @@ ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps
     case core::ParallaxMethod::Pom:
     case core::ParallaxMethod::Relief: {
       // More layers the flatter the view: n = max + (min − max)·|cos θ|, θ from the normal.
-      const float cos_view = -c / std::sqrt(a * a + b * b + c * c);
+      const float cos_view = float(-c / sqrt_op(a * a + b * b + c * c));
       const int layers = std::max(1, int(std::lround(float(s.layers_max) + float(s.layers_min - s.layers_max) * cos_view)));
-      const float step = (D / float(layers)) / -dz;  // ray length per layer
-      float px = x, py = y, pz = z, ph = D;           // the last point above (the entry)
-      float h = ph;
+      const T step = (D / T(float(layers))) / -dz;  // ray length per layer
+      T px = x, py = y, pz = z, ph = D;              // the last point above (the entry)
+      T h = ph;
       for (int i = 1; i <= layers && r.iterations < s.max_iterations; ++i) {
-        x = x0 + float(i) * step * dx, y = y0 + float(i) * step * dy, z = D + float(i) * step * dz;
+        const T along = T(float(i)) * step;
+        x = x0 + along * dx, y = y0 + along * dy, z = D + along * dz;
         h = D * height_at(f, x, y);
         ++r.iterations, r.fetches += 4;
         if (ops) *ops += kOpsLayer;
@@ -113,14 +127,15 @@ ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps
       }
       if (s.method == core::ParallaxMethod::Pom && z <= h) {
         // Where the line between the two layers' heights crosses the ray.
-        const float above = pz - ph, below = h - z;
-        const float w = above + below > 0 ? above / (above + below) : 1.0f;
+        const T above = pz - ph, below = h - z;
+        const T w = above + below > zero ? above / (above + below) : one;
         x = px + (x - px) * w, y = py + (y - py) * w;
         if (ops) *ops += Ops{/*add*/ 6, /*mul*/ 2, /*div*/ 1};
       } else if (s.method == core::ParallaxMethod::Relief && z <= h) {
+        const T half = T(0.5f);
         for (int i = 0; i < s.binary_steps && r.iterations < s.max_iterations; ++i) {
-          const float mx = (px + x) * 0.5f, my = (py + y) * 0.5f, mz = (pz + z) * 0.5f;
-          const float mh = D * height_at(f, mx, my);
+          const T mx = (px + x) * half, my = (py + y) * half, mz = (pz + z) * half;
+          const T mh = D * height_at(f, mx, my);
           ++r.iterations, r.fetches += 4;
           if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 3};
           if (mz <= mh) x = mx, y = my, z = mz;
@@ -132,11 +147,12 @@ ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps
     case core::ParallaxMethod::Distance: {
       // Sphere tracing: p ← p + d(p)·v̂, the voxel holding p read as stored (its value is
       // safe for every point of the voxel).
+      const T near = T(kParallaxNear);
       while (r.iterations < s.max_iterations) {
-        const float d = m.volume.sample(x, y, z);
+        const T d = T(m.volume.sample(float(x), float(y), float(z)));
         ++r.iterations, ++r.fetches;
         if (ops) *ops += kOpsSphere;
-        if (d < kParallaxNear) break;
+        if (d < near) break;
         x += d * dx, y += d * dy, z += d * dz;
         ++r.skips;
       }
@@ -144,19 +160,19 @@ ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps
       break;
     }
     case core::ParallaxMethod::Cone: {
-      // Cone stepping: from p over cell (i, j), the ray stays in the cell's cone — free of
-      // relief — until it has come down to apex + (distance from the footprint)/ratio.
-      const float across = std::sqrt(dx * dx + dy * dy), down = -dz;
+      // Cone stepping: from p over cell (i, j), the ray stays in the cone of the cell —
+      // free of relief — until it has come down to apex + (distance from the footprint)/ratio.
+      const T across = sqrt_op(dx * dx + dy * dy), down = -dz, near = T(kParallaxNear);
       while (r.iterations < s.max_iterations) {
-        int i = int(std::floor(x)) % f.width, j = int(std::floor(y)) % f.height;
+        int i = int(float(floor_op(x))) % f.width, j = int(float(floor_op(y))) % f.height;
         if (i < 0) i += f.width;
         if (j < 0) j += f.height;
         const size_t cell = size_t(j) * size_t(f.width) + size_t(i);
-        const float above = z - m.cone.apex[cell], ratio = m.cone.ratio[cell];
+        const T above = z - T(m.cone.apex[cell]), ratio = T(m.cone.ratio[cell]);
         ++r.iterations, ++r.fetches;
         if (ops) *ops += kOpsCone;
-        const float t = above > 0 && ratio > 0 ? above / (down + across / ratio) : 0.0f;
-        if (t < kParallaxNear) break;
+        const T t = above > zero && ratio > zero ? above / (down + across / ratio) : zero;
+        if (t < near) break;
         x += t * dx, y += t * dy, z += t * dz;
         ++r.skips;
       }
@@ -171,8 +187,19 @@ ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps
     r.iterations += idle, r.fetches += idle;
     if (ops) *ops += (s.method == core::ParallaxMethod::Cone ? kOpsCone : kOpsSphere) * uint64_t(idle);
   }
-  r.x = x, r.y = y;
+  r.x = float(x), r.y = float(y);
   if (ops) *ops += kOpsOut;
+  return r;
+}
+
+}  // namespace
+
+ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0, float y0, float a,
+                             float b, float c, Ops* ops, NumberContext* numbers) {
+  ParallaxTrace r;
+  NumberContext float32;
+  with_number_type(numbers ? *numbers : float32,
+                   [&](auto zero) { r = trace_as<decltype(zero)>(s, m, x0, y0, a, b, c, ops); });
   return r;
 }
 
@@ -182,7 +209,8 @@ bool ParallaxKernel::needed(const core::Scene& scene) {
   return false;
 }
 
-ParallaxKernel::ParallaxKernel(const core::Scene& scene) : scene_(scene) {
+ParallaxKernel::ParallaxKernel(const core::Scene& scene, core::NumberFormat format)
+    : scene_(scene), numbers_(format) {
   maps_.resize(scene.materials.size());
   for (const auto& o : scene.objects) {
     const core::Material& m = scene.materials[size_t(o.material)];
@@ -216,7 +244,7 @@ void ParallaxKernel::process(SpanPacket& p) {
     // the shift found is added to the uv as it came.
     float x0 = u * W - 0.5f, y0 = (1 - v) * H - 0.5f;
     x0 -= W * std::floor(x0 / W), y0 -= H * std::floor(y0 / H);
-    if (t.parallax_frame) r = trace_parallax(m.parallax, maps, x0, y0, a, b, c, &ops_);
+    if (t.parallax_frame) r = trace_parallax(m.parallax, maps, x0, y0, a, b, c, &ops_, &numbers_);
     const bool moved = r.iterations > 0;
     p.uvp[0][i] = moved ? u + (r.x - x0) / W : u;
     p.uvp[1][i] = moved ? v - (r.y - y0) / H : v;
@@ -225,6 +253,7 @@ void ParallaxKernel::process(SpanPacket& p) {
   }
   ops_ += Ops{/*add*/ 5, /*mul*/ 5} * uint64_t(p.count);  // uv and the tangent-space eye vector, per pixel
   if (p.count > 0) ops_ += Ops{/*add*/ 10, /*mul*/ 10};   // five plane seeds
+  nonfinite_ += count_nonfinite(p.uvp[0], p.count) + count_nonfinite(p.uvp[1], p.count);
   iterations_ += iterations;
   last_iterations_ = iterations;  // one iteration a cycle
 }

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/parallax_map.hpp"
+#include "modules/common/number.hpp"
 #include "modules/common/packet.hpp"
 
 namespace modules {
@@ -51,12 +52,14 @@ constexpr float kParallaxNear = 0.5f;
 // normal: c < 0 into the surface). A depth ≤ 0, or a ray with c ≥ 0 (parallel to the
 // surface or leaving it), returns the entry point with 0 iterations. Adds the
 // operations done to `ops` if given.
+// `numbers`: the tracer's number format and event counters (nullptr: float32).
 ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0, float y0, float a,
-                             float b, float c, Ops* ops = nullptr);
+                             float b, float c, Ops* ops = nullptr, NumberContext* numbers = nullptr);
 
 class ParallaxKernel {
  public:
-  ParallaxKernel(const core::Scene& scene);
+  // The tracer runs in `format` (pipeline.parallax.format).
+  explicit ParallaxKernel(const core::Scene& scene, core::NumberFormat format = {});
   static bool needed(const core::Scene& scene);
 
   void process(SpanPacket& p);
@@ -66,6 +69,7 @@ class ParallaxKernel {
 
   double precompute_seconds() const { return precompute_s_; }
   uint64_t iterations() const { return iterations_; }
+  NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
 
   void set_capture(bool on) { capture_ = on; }
   static std::vector<std::string> trace_names() { return {"u", "v", "u_out", "v_out", "iterations"}; }
@@ -78,6 +82,8 @@ class ParallaxKernel {
   const core::Scene& scene_;
   std::vector<std::unique_ptr<ParallaxMaps>> maps_;  // by material index
   uint64_t iterations_ = 0, last_iterations_ = 0;
+  NumberContext numbers_;
+  uint64_t nonfinite_ = 0;
   double precompute_s_ = 0;
   Ops ops_;
   bool capture_ = false;

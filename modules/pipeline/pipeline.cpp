@@ -40,6 +40,7 @@ Options read_options(const core::Scene& scene) {
   o.bump.filter = parse_filter(scene.pipeline.string("bump_fetch.filter"));
   o.bump.probes = scene.pipeline.integer("bump_fetch.probes");
   o.bump.renormalize_mips = scene.pipeline.boolean("bump_fetch.renormalize_mips");
+  for (const auto& b : core::formatted_blocks()) o.formats[b] = scene.pipeline.format(b);
   for (const auto& b : block_names())
     o.timing[b] = Timing{uint64_t(scene.pipeline.integer(b + ".latency")),
                          uint64_t(scene.pipeline.integer(b + ".ii"))};
@@ -49,20 +50,20 @@ Options read_options(const core::Scene& scene) {
 Kernels::Kernels(const core::Scene& scene, const Options& o)
     : setup(scene, o.perspective, o.affine_bump_vectors),
       raster(scene.camera.width, scene.camera.height),
-      normal_interp(o.reseed),
-      normalize(o.normalize),
-      lighting(scene),
+      normal_interp(o.reseed, o.formats.at("normal_interp")),
+      normalize(o.normalize, o.formats.at("normalize")),
+      lighting(scene, o.formats.at("lighting")),
       framebuffer(scene, TexelProjectKernel::needed(scene)) {
   // Only the blocks some material needs — or all of them (pipeline.elaborate = all), to
   // measure what the skipping saves.
   const bool all = o.elaborate_all;
-  if (all || TexelProjectKernel::needed(scene)) texel_project.emplace(scene, o.splat_units);
-  if (all || ParallaxKernel::needed(scene)) parallax.emplace(scene);
+  if (all || TexelProjectKernel::needed(scene)) texel_project.emplace(scene, o.splat_units, o.formats.at("texel_project"));
+  if (all || ParallaxKernel::needed(scene)) parallax.emplace(scene, o.formats.at("parallax"));
   if (all || BumpFetchKernel::needed(scene)) bump_fetch.emplace(scene, o.bump);
   if (all || BumpPerturbKernel::needed(scene)) bump_perturb.emplace(o.perspective);
   if (all || NormalMuxKernel::needed(scene)) normal_mux.emplace();
   if (all || VectorInterpKernel::needed(scene))
-    vector_interp.emplace(scene, setup.point_lights(), o.affine_bump_vectors);
+    vector_interp.emplace(scene, setup.point_lights(), o.affine_bump_vectors, o.formats.at("vector_interp"));
   if (all || TextureFetchKernel::needed(scene)) texture_fetch.emplace(scene, o.texture);
 }
 
@@ -75,15 +76,19 @@ void fill_counts(RenderResult& r, const Kernels& k) {
   r.pixels_hidden = k.raster.pixels_hidden();
   r.precompute_s = (k.bump_fetch ? k.bump_fetch->precompute_seconds() : 0.0) +
                    (k.parallax ? k.parallax->precompute_seconds() : 0.0);
-  r.nonfinite_written = k.framebuffer.nonfinite();
+  r.nonfinite_replaced = k.framebuffer.nonfinite();
   for (auto& b : r.blocks) {
-    if (b.name == "normal_interp") b.ranges = k.normal_interp.ranges();
-    if (b.name == "bump_fetch") b.ranges = k.bump_fetch->ranges();
-    if (b.name == "bump_perturb") b.ranges = k.bump_perturb->ranges();
+    if (b.name == "normal_interp") b.ranges = k.normal_interp.ranges(), b.numbers = k.normal_interp.numbers();
+    if (b.name == "normalize") b.numbers = k.normalize.numbers();
+    if (b.name == "lighting") b.numbers = k.lighting.numbers();
+    if (b.name == "vector_interp") b.numbers = k.vector_interp->numbers();
+    if (b.name == "bump_fetch") b.ranges = k.bump_fetch->ranges(), b.numbers = k.bump_fetch->numbers();
+    if (b.name == "bump_perturb") b.ranges = k.bump_perturb->ranges(), b.numbers = k.bump_perturb->numbers();
+    if (b.name == "texture_fetch") b.numbers = k.texture_fetch->numbers();
     if (b.name == "vector_interp") b.ranges = k.vector_interp->ranges();
-    if (b.name == "texel_project") b.details = k.texel_project->stats();
+    if (b.name == "texel_project") b.details = k.texel_project->stats(), b.numbers = k.texel_project->numbers();
     if (b.name == "texture_fetch") b.details = {{"lod_computations", k.texture_fetch->lod_computations()}};
-    if (b.name == "parallax") b.details = {{"iterations", k.parallax->iterations()}};
+    if (b.name == "parallax") b.details = {{"iterations", k.parallax->iterations()}}, b.numbers = k.parallax->numbers();
   }
 }
 
@@ -343,12 +348,14 @@ nlohmann::json RenderResult::stats_json() const {
   j["sim_time_s"] = double(frame_cycles) / (clock_mhz * 1e6);
   j["bottleneck"] = frame_cycles > 0 && bottleneck() ? nlohmann::json(bottleneck()->name) : nlohmann::json();
   j["precompute_s"] = precompute_s;
-  j["nonfinite_written"] = nonfinite_written;
+  j["nonfinite_replaced"] = nonfinite_replaced;
   j["elaborated"] = nlohmann::json::array();
   for (const auto& b : blocks) j["elaborated"].push_back(b.name);
   j["triangles"] = {{"in", triangles_in}, {"drawn", triangles_drawn}};
   j["pixels"] = {{"walked", pixels_walked}, {"hidden", pixels_hidden}, {"shaded", pixels_shaded}};
   j["blocks"] = nlohmann::json::object();
+  // Every block's non-finite outputs and number events, summed (docs/numerical-stability.md).
+  nlohmann::json numbers = {{"nonfinite", uint64_t(0)}, {"overflows", uint64_t(0)}, {"invalid", uint64_t(0)}};
   for (const auto& b : blocks) {
     nlohmann::json bj = {{"packets", b.stats.packets},     {"pixels", b.stats.pixels},
                          {"bypassed", b.stats.bypassed},   {"busy_cycles", b.stats.busy_cycles},
@@ -357,8 +364,16 @@ nlohmann::json RenderResult::stats_json() const {
     bj["utilization"] = frame_cycles > 0 ? double(b.stats.busy_cycles) / double(frame_cycles) : 0.0;
     if (!b.ranges.empty()) bj["ranges"] = to_json(b.ranges);
     if (!b.details.is_null()) bj["details"] = b.details;
+    if (b.numbers) {
+      bj["numbers"] = {{"format", b.numbers->format}, {"nonfinite", b.numbers->nonfinite},
+                       {"overflows", b.numbers->events.overflows}, {"invalid", b.numbers->events.invalid}};
+      numbers["nonfinite"] = numbers["nonfinite"].get<uint64_t>() + b.numbers->nonfinite;
+      numbers["overflows"] = numbers["overflows"].get<uint64_t>() + b.numbers->events.overflows;
+      numbers["invalid"] = numbers["invalid"].get<uint64_t>() + b.numbers->events.invalid;
+    }
     j["blocks"][b.name] = bj;
   }
+  j["numbers"] = numbers;
   if (bin_cycles > 0 && frame_cycles > 0) {
     // Utilization over time: each block's busy share of every bin, and the busiest
     // block per bin. No back-pressure in the timing model, so no stalls: a block is

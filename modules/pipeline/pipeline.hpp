@@ -50,6 +50,7 @@ struct Options {
   TextureFetchKernel::Options texture;
   int splat_units = 4;  // texel_project.units
   bool affine_bump_vectors = false;  // vector_interp.bump_vectors
+  std::map<std::string, core::NumberFormat> formats;  // <block>.format, by block (core::formatted_blocks)
   std::map<std::string, Timing> timing;  // by block name
 };
 // Reads the scene's pipeline section; throws core::InputError for what the pipeline
@@ -82,6 +83,7 @@ struct BlockReport {
   std::vector<uint64_t> busy_per_bin;  // busy cycles per Inspect::bin_cycles
   Ranges ranges;                       // of the block's datapaths (docs/pipeline.md)
   nlohmann::json details;              // block-specific figures (texel_project)
+  std::optional<NumberStats> numbers;  // its number format and what its numbers met
 };
 
 // What to record for inspection (docs/inspecting.md).
@@ -106,7 +108,7 @@ struct RenderResult {
   uint64_t bin_cycles = 0;          // of the blocks' busy_per_bin (0: none)
   uint64_t trace_records = 0;       // pixels written to the VCD, all blocks
   double precompute_s = 0;          // bump maps built when the pipeline was (not in wall_s)
-  uint64_t nonfinite_written = 0;   // NaN or infinite colour or normal values the framebuffer wrote
+  uint64_t nonfinite_replaced = 0;   // NaN or infinite colour or normal values that reached the framebuffer (written as 0)
 
   const BlockReport* bottleneck() const;  // the block with the most busy cycles
   Ops total_ops() const;

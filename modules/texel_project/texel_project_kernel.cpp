@@ -31,12 +31,13 @@ bool TexelProjectKernel::needed(const core::Scene& scene) {
   return false;
 }
 
-TexelProjectKernel::TexelProjectKernel(const core::Scene& scene, int units)
+TexelProjectKernel::TexelProjectKernel(const core::Scene& scene, int units, core::NumberFormat format)
     : scene_(scene),
       units_(std::max(1, units)),
       view_projection_(scene.camera.projection() * scene.camera.view()),
       unit_texels_(size_t(std::max(1, units)), 0),
-      unit_round_robin_(size_t(std::max(1, units)), 0) {
+      unit_round_robin_(size_t(std::max(1, units)), 0),
+      numbers_(format) {
   mips_.resize(scene.textures.size());
   for (const auto& o : scene.objects) {
     const core::Material& m = scene.materials[size_t(o.material)];
@@ -210,6 +211,13 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
   // margin) bound the run of samples inside, b_k(u) · altitude_k ≥ −margin with b_k
   // affine in u, like a scanline rasterizer's spans.
   const double slope[3] = {-(t2.y - t1.y) / det, t2.y / det, -t1.y / det};  // ∂b_k/∂u
+  // The projection and the splat weights run in pipeline.texel_project.format (T); the
+  // traversal's set-up above stays in double, the accumulation in the frame's buffer.
+  with_number_type(numbers_, [&](auto zero) {
+  using T = decltype(zero);
+  const T ax_t[3] = {T(ax[0]), T(ax[1]), T(ax[2])}, ay_t[3] = {T(ay[0]), T(ay[1]), T(ay[2])};
+  const T origin_t[3] = {T(origin[0]), T(origin[1]), T(origin[2])};
+  const T one = T(1.0f), half = T(0.5f), w_min = T(1e-6f), width_t = T(float(width)), height_t = T(float(height));
   for (long j = j0; j <= j1; ++j) {
     const double v = 1 - (double(j) + 0.5) / GH, dv = v - uv[0].y;
     const double at_u0[3] = {1 - (-dv * t2.x + dv * t1.x) / det, -dv * t2.x / det, dv * t1.x / det};  // b_k at u = u0
@@ -225,22 +233,22 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
     const long first = std::max(i0, bound(std::ceil(u_min * GW - 0.5))), end = std::min(i1, bound(std::floor(u_max * GW - 0.5)));
     // (x', y') − A at the run's first sample, then a constant step per sample.
     const double du_first = (double(first) + 0.5) / GW - uv[0].x;
-    float xr = float(along_u.x * du_first + along_v.x * dv), yr = float(along_u.y * du_first + along_v.y * dv);
-    const float step_x = float(along_u.x / GW), step_y = float(along_u.y / GW);
+    T xr = T(float(along_u.x * du_first + along_v.x * dv)), yr = T(float(along_u.y * du_first + along_v.y * dv));
+    const T step_x = T(float(along_u.x / GW)), step_y = T(float(along_u.y / GW));
     ops_ += Ops{/*add*/ 3, /*mul*/ 6, /*div*/ 2};
     for (long i = first; i <= end; ++i, xr += step_x, yr += step_y) {
       const double u = (double(i) + 0.5) / GW;
       // Back to the screen: (x', y') − A (stepped along the row: 2 add), then M*; behind
       // the eye: nothing to splat.
       ops_ += kOpsProjection;
-      const float cx = ax[0] * xr + ay[0] * yr + origin[0];
-      const float cy = ax[1] * xr + ay[1] * yr + origin[1];
-      const float cw = ax[2] * xr + ay[2] * yr + origin[2];
-      if (!(cw > 1e-6f)) continue;
-      const float inv_w = 1.0f / cw;
-      const float x = (cx * inv_w * 0.5f + 0.5f) * float(width) - 0.5f;  // pixel centres at +½
-      const float y = (0.5f - cy * inv_w * 0.5f) * float(height) - 0.5f;
-      if (!(x > -1.0f && y > -1.0f && x < float(width) && y < float(height))) continue;  // off the frame
+      const T cx = ax_t[0] * xr + ay_t[0] * yr + origin_t[0];
+      const T cy = ax_t[1] * xr + ay_t[1] * yr + origin_t[1];
+      const T cw = ax_t[2] * xr + ay_t[2] * yr + origin_t[2];
+      if (!(cw > w_min)) continue;
+      const T inv_w = one / cw;
+      const T x = (cx * inv_w * half + half) * width_t - half;  // pixel centres at +½
+      const T y = (half - cy * inv_w * half) * height_t - half;
+      if (!(x > -one && y > -one && x < width_t && y < height_t)) continue;  // off the frame
       ++texels_;
       ops_ += kOpsPerTexel;
       auto& span = tile_span[size_t(floor_div(floor_div(j, mi), 4) - tile_row0)];
@@ -265,11 +273,14 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
         ops_.fetch -= 1;       // counted in kOpsPerTexel
       }
       // The area weights of the four pixels around the sample.
-      const float fx0 = std::floor(x), fy0 = std::floor(y);
-      const float fx = x - fx0, fy = y - fy0;
-      const float weight[4] = {(1 - fx) * (1 - fy), fx * fy, fx * (1 - fy), (1 - fx) * fy};  // S1 … S4
-      const int px[4] = {int(fx0), int(fx0) + 1, int(fx0) + 1, int(fx0)};
-      const int py[4] = {int(fy0), int(fy0) + 1, int(fy0), int(fy0) + 1};
+      const T fx0 = floor_op(x), fy0 = floor_op(y);
+      const T fx = x - fx0, fy = y - fy0;
+      const T weight_t[4] = {(one - fx) * (one - fy), fx * fy, fx * (one - fy), (one - fx) * fy};  // S1 … S4
+      const float weight[4] = {float(weight_t[0]), float(weight_t[1]), float(weight_t[2]), float(weight_t[3])};
+      nonfinite_ += count_nonfinite(weight, 4);
+      const int px0 = int(float(fx0)), py0 = int(float(fy0));
+      const int px[4] = {px0, px0 + 1, px0 + 1, px0};
+      const int py[4] = {py0, py0 + 1, py0, py0 + 1};
       weight_sum_error_ =
           std::max(weight_sum_error_, std::abs(double(weight[0] + weight[1] + weight[2] + weight[3]) - 1.0));
       // Splat units own interleaved 4×4 pixel tiles; a texel goes to the unit of its first
@@ -289,6 +300,7 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
       }
     }
   }
+  });
   for (const auto& span : tile_span)
     if (span.first <= span.second) ops_.line += uint64_t(span.second - span.first + 1);
 }

@@ -30,6 +30,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "modules/common/number.hpp"
 #include "modules/common/packet.hpp"
 #include "modules/framebuffer/framebuffer_kernel.hpp"
 
@@ -45,7 +46,9 @@ struct PolygonRotation {
 
 class TexelProjectKernel {
  public:
-  TexelProjectKernel(const core::Scene& scene, int units);
+  // The projection of each texel and its splat weights run in `format`
+  // (pipeline.texel_project.format).
+  TexelProjectKernel(const core::Scene& scene, int units, core::NumberFormat format = {});
   static bool needed(const core::Scene& scene);
 
   // The second pass over the frame in `fb`: splat, resolve, composite.
@@ -57,6 +60,8 @@ class TexelProjectKernel {
   // tiles are writes across units, counted), then the resolve, spread likewise.
   uint64_t cycles() const { return cycles_; }
   nlohmann::json stats() const;
+  // Non-finite counts are of the splat weights.
+  NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
 
   uint64_t polygons() const { return polygons_; }
   uint64_t lod_computations() const { return lod_computations_; }
@@ -95,6 +100,8 @@ class TexelProjectKernel {
   uint64_t polygons_ = 0, lod_computations_ = 0, texels_ = 0, splats_ = 0, covered_ = 0, holes_ = 0;
   uint64_t cycles_ = 0, oversampled_ = 0, budget_limited_ = 0, cross_unit_splats_ = 0;
   double weight_sum_error_ = 0;
+  NumberContext numbers_;
+  uint64_t nonfinite_ = 0;
 };
 
 }  // namespace modules

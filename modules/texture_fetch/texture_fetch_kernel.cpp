@@ -40,7 +40,7 @@ void TextureFetchKernel::process_filtered(SpanPacket& p) {
     for (int i = 0; i < p.count; ++i) captured_[4][i] = captured_[2][i], captured_[2][i] = captured_[3][i] = -1;
 }
 
-void TextureFetchKernel::process(SpanPacket& p) {
+void TextureFetchKernel::fetch(SpanPacket& p) {
   if (p.tri->material->path == core::ShadingPath::TextureScreen) return process_filtered(p);
   last_cycles_ = 0;
   const TriangleSetup& t = *p.tri;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "modules/common/number.hpp"
 #include "modules/common/packet.hpp"
 #include "modules/common/range.hpp"
 #include "modules/common/sampler.hpp"
@@ -22,7 +23,12 @@ class TextureFetchKernel {
   TextureFetchKernel(const core::Scene& scene, const Options& options);
   static bool needed(const core::Scene& scene);
 
-  void process(SpanPacket& p);
+  void process(SpanPacket& p) {
+    fetch(p);
+    for (int c = 0; c < 3; ++c) nonfinite_ += count_nonfinite(p.tex[c], p.count);
+  }
+  // float32 datapaths; the non-finite values among the block's outputs.
+  NumberStats numbers() const { return {"float32", nonfinite_, {}}; }
   const Ops& ops() const { return ops_; }
   uint64_t work(const SpanPacket& p) const { return last_cycles_ > 0 ? last_cycles_ : uint64_t(p.count); }
   bool bypass(const SpanPacket& p) const {
@@ -59,6 +65,8 @@ class TextureFetchKernel {
   Ops ops_;
   bool capture_ = false;
   float captured_[5][kSpanMax] = {};
+  void fetch(SpanPacket& p);
+  uint64_t nonfinite_ = 0;
 };
 
 }  // namespace modules

@@ -7,11 +7,12 @@
 namespace modules {
 
 VectorInterpKernel::VectorInterpKernel(const core::Scene& scene, const std::vector<int>& point_lights,
-                                       bool affine_bump_vectors)
+                                       bool affine_bump_vectors, core::NumberFormat format)
     : light_count_(int(std::min(scene.lights.size(), size_t(kMaxLights)))),
       world_(needed_in_world(scene)),
       affine_bump_vectors_(affine_bump_vectors),
-      local_viewer_(scene.camera.local_viewer) {
+      local_viewer_(scene.camera.local_viewer),
+      numbers_(format) {
   const glm::dvec3 v = -scene.camera.forward();
   for (int c = 0; c < 3; ++c) view_[c] = float(v[c]);
   for (size_t i = 0; i < scene.lights.size(); ++i) {
@@ -76,95 +77,121 @@ Ops VectorInterpKernel::ops_per_pixel_in_space() const {
   return (interpolate + kOpsNormalize3) * uint64_t(2 * light_count_);
 }
 
+void VectorInterpKernel::process(SpanPacket& p) {
+  const bool in_space = core::fetches_normal(p.tri->material->path);
+  with_number_type(numbers_, [&](auto zero) {
+    if (in_space) process_in_space<decltype(zero)>(p);
+    else process_in_world<decltype(zero)>(p);
+  });
+  // Non-finite values among what was written: L and H of every light in the texture's
+  // space; in the world, H of the lights listed and L of the point lights.
+  for (int k = 0; k < light_count_; ++k) {
+    const LightSlot* s = nullptr;
+    for (const auto& slot : lights_) s = slot.light == k ? &slot : s;
+    const bool l_written = in_space || (s && s->plane >= 0), h_written = in_space || s;
+    for (int c = 0; c < 3; ++c)
+      nonfinite_ += (l_written ? count_nonfinite(p.l[k][c], p.count) : 0) +
+                    (h_written ? count_nonfinite(p.h[k][c], p.count) : 0);
+  }
+  if (in_space) {
+    ops_ += ops_per_pixel_in_space() * uint64_t(p.count);
+    // Three plane seeds a vector: V and L (affine), or L and H, of every light.
+    if (p.count > 0) ops_ += Ops{/*add*/ 6, /*mul*/ 6} * uint64_t(affine_bump_vectors_ ? light_count_ + 1 : 2 * light_count_);
+  } else {
+    ops_ += ops_per_pixel() * uint64_t(p.count);
+    if (p.count > 0) ops_ += ops_per_span();
+  }
+}
+
+// The planes are setup's, in float32; their seeds and steps are rounded to the format.
+template <class T>
 void VectorInterpKernel::process_in_space(SpanPacket& p) {
   const TriangleSetup& t = *p.tri;
   const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
   if (affine_bump_vectors_) {
-    float view[kSpanMax][3];
-    float v_w[3];
-    for (int c = 0; c < 3; ++c) v_w[c] = t.vt[c].at(dx, dy);
+    T view[kSpanMax][3];
+    T v_w[3], v_step[3];
+    for (int c = 0; c < 3; ++c) v_w[c] = T(t.vt[c].at(dx, dy)), v_step[c] = T(t.vt[c].ax);
     for (int i = 0; i < p.count; ++i) {
-      for (int c = 0; c < 3; ++c) view[i][c] = v_w[c] * p.w[i], v_w[c] += t.vt[c].ax;
+      const T w = T(p.w[i]);
+      for (int c = 0; c < 3; ++c) view[i][c] = v_w[c] * w, v_w[c] += v_step[c];
       normalize3(view[i]);
     }
     for (int k = 0; k < light_count_; ++k) {
-      float l_w[3];
+      T l_w[3], l_step[3];
       for (int c = 0; c < 3; ++c) {
-        l_w[c] = t.lt[k][c].at(dx, dy);
-        l_range_.add_span(l_w[c], t.lt[k][c].ax, p.count, p.w);
+        l_w[c] = T(t.lt[k][c].at(dx, dy)), l_step[c] = T(t.lt[k][c].ax);
+        l_range_.add_span(t.lt[k][c].at(dx, dy), t.lt[k][c].ax, p.count, p.w);
       }
       for (int i = 0; i < p.count; ++i) {
-        float l[3];
-        for (int c = 0; c < 3; ++c) l[c] = l_w[c] * p.w[i], l_w[c] += t.lt[k][c].ax;
+        const T w = T(p.w[i]);
+        T l[3];
+        for (int c = 0; c < 3; ++c) l[c] = l_w[c] * w, l_w[c] += l_step[c];
         normalize3(l);
-        float h[3] = {l[0] + view[i][0], l[1] + view[i][1], l[2] + view[i][2]};
+        T h[3] = {l[0] + view[i][0], l[1] + view[i][1], l[2] + view[i][2]};
         normalize3(h);
-        for (int c = 0; c < 3; ++c) p.l[k][c][i] = l[c], p.h[k][c][i] = h[c];
+        for (int c = 0; c < 3; ++c) p.l[k][c][i] = float(l[c]), p.h[k][c][i] = float(h[c]);
       }
     }
-    ops_ += ops_per_pixel_in_space() * uint64_t(p.count);
-    if (p.count > 0) ops_ += Ops{/*add*/ 6, /*mul*/ 6} * uint64_t(light_count_ + 1);  // three plane seeds a vector
     return;
   }
   for (int k = 0; k < light_count_; ++k) {
-    float l_w[3], h_w[3];
+    T l_w[3], h_w[3], l_step[3], h_step[3];
     for (int c = 0; c < 3; ++c) {
-      l_w[c] = t.lt[k][c].at(dx, dy), h_w[c] = t.ht[k][c].at(dx, dy);
-      l_range_.add_span(l_w[c], t.lt[k][c].ax, p.count, p.w);
-      h_range_.add_span(h_w[c], t.ht[k][c].ax, p.count, p.w);
+      l_w[c] = T(t.lt[k][c].at(dx, dy)), h_w[c] = T(t.ht[k][c].at(dx, dy));
+      l_step[c] = T(t.lt[k][c].ax), h_step[c] = T(t.ht[k][c].ax);
+      l_range_.add_span(t.lt[k][c].at(dx, dy), t.lt[k][c].ax, p.count, p.w);
+      h_range_.add_span(t.ht[k][c].at(dx, dy), t.ht[k][c].ax, p.count, p.w);
     }
     for (int i = 0; i < p.count; ++i) {
-      const float w = p.w[i];
-      float l[3], h[3];
+      const T w = T(p.w[i]);
+      T l[3], h[3];
       for (int c = 0; c < 3; ++c) {
         l[c] = l_w[c] * w, h[c] = h_w[c] * w;
-        l_w[c] += t.lt[k][c].ax, h_w[c] += t.ht[k][c].ax;
+        l_w[c] += l_step[c], h_w[c] += h_step[c];
       }
       normalize3(l);
       normalize3(h);
-      for (int c = 0; c < 3; ++c) p.l[k][c][i] = l[c], p.h[k][c][i] = h[c];
+      for (int c = 0; c < 3; ++c) p.l[k][c][i] = float(l[c]), p.h[k][c][i] = float(h[c]);
     }
   }
-  ops_ += ops_per_pixel_in_space() * uint64_t(p.count);
-  if (p.count > 0) ops_ += Ops{/*add*/ 12, /*mul*/ 12} * uint64_t(light_count_);  // six plane seeds a light
 }
 
-void VectorInterpKernel::process(SpanPacket& p) {
-  if (core::fetches_normal(p.tri->material->path)) return process_in_space(p);
+template <class T>
+void VectorInterpKernel::process_in_world(SpanPacket& p) {
   const TriangleSetup& t = *p.tri;
   const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
   // Seeds of L/w and V/w at the packet's first pixel.
-  float v_w[3], v_step[3];
-  for (int c = 0; c < 3; ++c) v_w[c] = t.v[c].at(dx, dy), v_step[c] = t.v[c].ax;
-  float l_w[kMaxLights][3], l_step[kMaxLights][3];
+  T v_w[3], v_step[3];
+  for (int c = 0; c < 3; ++c) v_w[c] = T(t.v[c].at(dx, dy)), v_step[c] = T(t.v[c].ax);
+  T l_w[kMaxLights][3], l_step[kMaxLights][3];
   for (const auto& s : lights_)
     if (s.plane >= 0)
       for (int c = 0; c < 3; ++c) {
-        l_w[s.plane][c] = t.l[s.plane][c].at(dx, dy), l_step[s.plane][c] = t.l[s.plane][c].ax;
-        l_range_.add_span(l_w[s.plane][c], l_step[s.plane][c], p.count, p.w);
+        const Plane& plane = t.l[s.plane][c];
+        l_w[s.plane][c] = T(plane.at(dx, dy)), l_step[s.plane][c] = T(plane.ax);
+        l_range_.add_span(plane.at(dx, dy), plane.ax, p.count, p.w);
       }
 
   for (int i = 0; i < p.count; ++i) {
-    const float w = p.w[i];
-    float view[3] = {view_[0], view_[1], view_[2]};
+    const T w = T(p.w[i]);
+    T view[3] = {T(view_[0]), T(view_[1]), T(view_[2])};
     if (local_viewer_) {
       for (int c = 0; c < 3; ++c) view[c] = v_w[c] * w, v_w[c] += v_step[c];
       normalize3(view);
     }
     for (const auto& s : lights_) {
-      float l[3] = {s.direction[0], s.direction[1], s.direction[2]};
+      T l[3] = {T(s.direction[0]), T(s.direction[1]), T(s.direction[2])};
       if (s.plane >= 0) {
         for (int c = 0; c < 3; ++c) l[c] = l_w[s.plane][c] * w, l_w[s.plane][c] += l_step[s.plane][c];
         normalize3(l);
-        for (int c = 0; c < 3; ++c) p.l[s.light][c][i] = l[c];
+        for (int c = 0; c < 3; ++c) p.l[s.light][c][i] = float(l[c]);
       }
-      float h[3] = {l[0] + view[0], l[1] + view[1], l[2] + view[2]};
+      T h[3] = {l[0] + view[0], l[1] + view[1], l[2] + view[2]};
       normalize3(h);
-      for (int c = 0; c < 3; ++c) p.h[s.light][c][i] = h[c];
+      for (int c = 0; c < 3; ++c) p.h[s.light][c][i] = float(h[c]);
     }
   }
-  ops_ += ops_per_pixel() * uint64_t(p.count);
-  if (p.count > 0) ops_ += ops_per_span();
 }
 
 }  // namespace modules

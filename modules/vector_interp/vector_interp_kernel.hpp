@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "modules/common/number.hpp"
 #include "modules/common/packet.hpp"
 #include "modules/common/range.hpp"
 
@@ -22,7 +23,9 @@ namespace modules {
 
 class VectorInterpKernel {
  public:
-  VectorInterpKernel(const core::Scene& scene, const std::vector<int>& point_lights, bool affine_bump_vectors = false);
+  // Its datapaths are of `format` (pipeline.vector_interp.format).
+  VectorInterpKernel(const core::Scene& scene, const std::vector<int>& point_lights, bool affine_bump_vectors = false,
+                     core::NumberFormat format = {});
   // World-space L or H vary over the frame (point lights, a local viewer).
   static bool needed_in_world(const core::Scene& scene);
   static bool needed(const core::Scene& scene);
@@ -32,6 +35,7 @@ class VectorInterpKernel {
   uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }  // pixels
   bool bypass(const SpanPacket& p) const { return !world_ && !core::fetches_normal(p.tri->material->path); }
   Ranges ranges() const { return {{"l", l_range_}, {"h", h_range_}}; }
+  NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
 
   Ops ops_per_pixel() const;
   Ops ops_per_span() const;
@@ -48,7 +52,8 @@ class VectorInterpKernel {
     int plane;  // slot of its L/w planes in TriangleSetup::l, or -1 (directional)
     float direction[3];  // unit L of a directional light
   };
-  void process_in_space(SpanPacket& p);
+  template <class T> void process_in_space(SpanPacket& p);
+  template <class T> void process_in_world(SpanPacket& p);
 
   std::vector<LightSlot> lights_;
   int light_count_;  // all the scene's lights
@@ -58,6 +63,8 @@ class VectorInterpKernel {
   ValueRange l_range_, h_range_;  // interpolated, before normalization
   float view_[3];  // unit V of a viewer at infinity
   Ops ops_;
+  NumberContext numbers_;
+  uint64_t nonfinite_ = 0;
 };
 
 }  // namespace modules
