@@ -105,3 +105,7 @@ read -r width height < <("$bin" render "$scene" -o "$tmp/t.exr" | sed -n 's/.*, 
 x0=$((width / 2 - 32)) y0=$((height / 2 - 32))
 traced=$(seconds --vcd "$tmp/t.vcd" --trace-region $x0,$y0,$((x0 + 63)),$((y0 + 63)))
 awk -v a="$traced" -v b="$plain" 'BEGIN { printf "  64x64 region of 1920x1080 traced / untraced (wall, best of 3): %.4f s / %.4f s = %.3f (goal <= 2)\n", a, b, a / b }'
+
+echo
+echo "== number types: the datapaths' Fixed against SystemC's sc_fix_fast (one run) =="
+SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1 "$root/build/app/number_types_bench" 3 20

@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# The normal walker's error growth against span length and triangle height, per
+# re-seeding and per number format (docs/numerical-stability.md): prints the Markdown
+# tables and draws the plots into docs/images/. About 15 s.
+# Usage: scripts/stability-report.sh [shadetlm binary]
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+"$root/scripts/setup.sh" gnuplot-nox
+bin=${1:-$root/build/app/shadetlm}
+[[ -x $bin ]] || { "$root/scripts/build.sh" >/dev/null; bin=$root/build/app/shadetlm; }
+python3 "$root/scripts/stability-report.py" "$bin" "$root" "$root/docs/images"

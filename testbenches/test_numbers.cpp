@@ -1,0 +1,182 @@
+// The number types of the datapaths (modules/common/number.hpp) and the per-block
+// formats of the pipeline (docs/numerical-stability.md): float16 rounding checked against
+// the compiler's own binary16, fixed point's grid, rounding and saturation, the events
+// counted, and the formats at work in whole frames.
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "core/compare.hpp"
+#include "modules/common/number.hpp"
+#include "modules/pipeline/pipeline.hpp"
+#include "test_util.hpp"
+
+using modules::Fixed;
+using modules::Half;
+using modules::NumberContext;
+using modules::NumberScope;
+
+namespace {
+
+// The value of binary16 bit pattern `bits`, decoded by hand from the IEEE layout.
+double half_value(uint16_t bits) {
+  const int sign = bits >> 15, exponent = (bits >> 10) & 0x1f, mantissa = bits & 0x3ff;
+  const double magnitude = exponent == 0    ? std::ldexp(mantissa, -24)
+                           : exponent == 31 ? (mantissa ? NAN : HUGE_VAL)
+                                            : std::ldexp(1024 + mantissa, exponent - 25);
+  return sign ? -magnitude : magnitude;
+}
+
+double rgb_difference(const core::Frame& a, const core::Frame& b) {
+  core::CompareOptions o;
+  o.layers = {"RGB"};
+  return core::compare_frames(a, b, o).layers.at(0).max_abs;
+}
+
+}  // namespace
+
+TEST_CASE("float16: every binary16 value is kept and every midpoint rounds to even", "[numbers]") {
+  for (uint32_t bits = 0; bits < 0x7c00; ++bits) {  // the finite non-negative values
+    const double v = half_value(uint16_t(bits));
+    REQUIRE(modules::round_to_half(v) == v);
+    REQUIRE(modules::round_to_half(-v) == -v);
+    if (bits + 1 == 0x7c00) break;
+    const double next = half_value(uint16_t(bits + 1)), mid = (v + next) / 2;  // exact in double
+    const double even = (bits & 1) ? next : v;
+    INFO("between " << v << " and " << next);
+    REQUIRE(modules::round_to_half(mid) == even);
+    REQUIRE(modules::round_to_half(std::nextafter(mid, 0.0)) == v);
+    REQUIRE(modules::round_to_half(std::nextafter(mid, HUGE_VAL)) == next);
+  }
+  // Past the largest finite value (65504), from the midpoint to 65536 on: infinity.
+  CHECK(modules::round_to_half(65519.99) == 65504.0);
+  CHECK(std::isinf(modules::round_to_half(65520.0)));
+  CHECK(modules::round_to_half(0x1p-25) == 0.0);                 // half the smallest subnormal: to even (0)
+  CHECK(modules::round_to_half(0x1.8p-25) == 0x1p-24);           // over half of it: the smallest subnormal
+#ifdef __FLT16_MANT_DIG__
+  // The compiler's own conversion, where it has one, on random floats of every binade.
+  std::mt19937 rng(7);
+  for (int i = 0; i < 200000; ++i) {
+    uint32_t fbits = rng() & 0x47ffffffu;  // |x| < 2^17, both signs
+    float x;
+    std::memcpy(&x, &fbits, sizeof x);
+    REQUIRE(modules::round_to_half(double(x)) == double(float(_Float16(x))));
+  }
+#endif
+}
+
+TEST_CASE("float16 arithmetic rounds each result once and counts overflows and invalid operations", "[numbers]") {
+  NumberContext context(core::NumberFormat::parse("float16"));
+  NumberScope scope(context);
+  const Half a = 1.0f, tiny = 0x1p-11f;  // tiny: half an ulp of 1
+  CHECK(float(a + tiny) == 1.0f);         // a tie: to even
+  CHECK(float(a + tiny + tiny) == 1.0f);  // rounded after each addition, not once at the end
+  CHECK(float(Half(2049.0f)) == 2048.0f); // 11 significant bits
+  CHECK(context.events.overflows == 0);
+  const Half big = 60000.0f;
+  CHECK(std::isinf(float(big + big)));
+  CHECK(context.events.overflows == 1);
+  CHECK(std::isnan(float(modules::sqrt_op(Half(-1.0f)))));
+  CHECK(context.events.invalid == 1);
+  const Half inf = big + big;
+  (void)(inf - inf);  // NaN from an infinity: counted (the operands are not NaN)
+  CHECK(context.events.invalid == 2);
+}
+
+TEST_CASE("fixed point: the grid, rounding, saturation and the events counted", "[numbers]") {
+  NumberContext context(core::NumberFormat::parse("fixed:3.4"));  // k/16 in [−8, 8 − 1/16]
+  NumberScope scope(context);
+  CHECK(double(Fixed(0.03125)) == 0.0);     // a tie to even: 0.5 LSB → 0
+  CHECK(double(Fixed(0.09375)) == 0.125);   // 1.5 LSB → 2 LSB
+  CHECK(double(Fixed(-0.7)) == -0.6875);
+  CHECK(double(Fixed(7.9375)) == 7.9375);
+  CHECK(context.events.overflows == 0);
+  CHECK(double(Fixed(9.0)) == 7.9375);      // saturated
+  CHECK(double(Fixed(-1e300)) == -8.0);
+  CHECK(double(Fixed(HUGE_VAL)) == 7.9375);
+  CHECK(context.events.overflows == 3);
+  CHECK(double(Fixed(4.0) + Fixed(4.0)) == 7.9375);
+  CHECK(double(-Fixed(-8.0)) == 7.9375);
+  CHECK(context.events.overflows == 5);
+  // Products: exact, then rounded once (half up) to the grid.
+  CHECK(double(Fixed(0.0625) * Fixed(0.5)) == 0.0625);    // 0.03125: half an LSB, up
+  CHECK(double(Fixed(-0.0625) * Fixed(0.5)) == 0.0);      // −0.03125: half an LSB, up (to 0)
+  CHECK(double(Fixed(1.5) * Fixed(-2.25)) == -3.375);
+  // Quotients round to nearest; a division by zero saturates and is counted.
+  CHECK(double(Fixed(1.0) / Fixed(3.0)) == 0.3125);        // 5.33 LSB → 5
+  CHECK(double(Fixed(-1.0) / Fixed(3.0)) == -0.3125);
+  CHECK(double(Fixed(1.0) / Fixed(0.0)) == 7.9375);
+  CHECK(double(Fixed(-1.0) / Fixed(0.0)) == -8.0);
+  CHECK(context.events.invalid == 2);
+  CHECK(double(modules::sqrt_op(Fixed(2.0))) == 1.4375);   // 1.41421… → 22.6 LSB → 23
+  CHECK(double(modules::rsqrt_op(Fixed(0.25))) == 2.0);
+  CHECK(double(modules::floor_op(Fixed(-0.5))) == -1.0);
+  CHECK(double(modules::floor_op(Fixed(2.9375))) == 2.0);
+  CHECK(double(Fixed(std::nan(""))) == 0.0);
+  CHECK(context.events.invalid == 3);
+  // The widest format keeps 52 bits: exact for every float32 of its range.
+  NumberContext wide(core::NumberFormat::parse("fixed:4.48"));
+  NumberScope wide_scope(wide);
+  CHECK(double(Fixed(0x1.fffffep-1f)) == double(0x1.fffffep-1f));
+  CHECK(double(Fixed(3.0) * Fixed(5.0)) == 15.0);
+  CHECK(wide.events.overflows == 0);
+}
+
+TEST_CASE("number format names: parsed, printed, and bad ones refused naming the field", "[numbers]") {
+  CHECK(core::NumberFormat::parse("float32").name() == "float32");
+  CHECK(core::NumberFormat::parse("float16").name() == "float16");
+  CHECK(core::NumberFormat::parse("fixed:0.15").name() == "fixed:0.15");
+  CHECK(core::NumberFormat::parse("fixed:30.22").name() == "fixed:30.22");
+  for (const char* bad : {"float64", "fixed", "fixed:3", "fixed:3.", "fixed:3.4x", "fixed:-1.4", "fixed:+3.4",
+                          "fixed:3. 4", "fixed:31.4", "fixed:3.0", "fixed:3.49", "fixed:10.43", "Fixed:3.4"}) {
+    INFO(bad);
+    CHECK_THROWS_AS(core::NumberFormat::parse(bad), std::invalid_argument);
+  }
+  const char* scene = R"({"camera": {"position": [0, 0, 5], "target": [0, 0, 0], "resolution": [64, 48]},
+                          "objects": [{"shape": "sphere"}]})";
+  CHECK(std::string(test::scene_error(scene, {"pipeline.normalize.format=fixed:3.60"}).what())
+            .find("pipeline.normalize.format") != std::string::npos);
+  CHECK(std::string(test::scene_error(scene, {"pipeline.number_format=default"}).what())
+            .find("pipeline.number_format") != std::string::npos);
+  const core::Scene s =
+      core::load_scene_text(scene, "ok.json", ".", {"pipeline.number_format=float16", "pipeline.lighting.format=fixed:2.14"});
+  CHECK(s.pipeline.format("normalize").name() == "float16");  // default: number_format
+  CHECK(s.pipeline.format("lighting").name() == "fixed:2.14");
+}
+
+TEST_CASE("a wide fixed-point format runs the same algorithms as float32, a narrow one shows its error", "[numbers]") {
+  // Every formatted block at once, on the demo (Phong, point light, local viewer) and a
+  // texture-object scene. fixed:12.40 keeps more bits than float32 over these ranges:
+  // the frame must match float32's to a few float32 ulps of colour; float16 must not.
+  for (const std::string file : {"scenes/demo.json", "golden/texture-object/scene.json"}) {
+    INFO(file);
+    const core::Scene base = core::load_scene(test::source_path(file));
+    const core::Frame f32 = modules::render_loop(base).frame;
+    auto render = [&](const std::string& format) {
+      return modules::render_loop(core::load_scene(test::source_path(file), {"pipeline.number_format=" + format}));
+    };
+    const modules::RenderResult wide = render("fixed:12.40"), half = render("float16");
+    const double wide_error = rgb_difference(wide.frame, f32), half_error = rgb_difference(half.frame, f32);
+    INFO("fixed:12.40 " << wide_error << ", float16 " << half_error);
+    CHECK(wide_error < 1e-5);
+    CHECK(half_error > 1e-4);  // 11 significant bits show
+    CHECK(half_error < 0.1);
+    const auto stats = wide.stats_json();
+    CHECK(stats["numbers"]["overflows"] == 0);
+    CHECK(stats["blocks"]["lighting"]["numbers"]["format"] == "fixed:12.40");
+  }
+}
+
+TEST_CASE("fixed-point overflow saturates the colour and is counted in the block that overflowed", "[numbers]") {
+  // fixed:0.16 holds [−1, 1): the demo's brightest colours saturate in lighting only.
+  const core::Scene s = core::load_scene(test::source_path("scenes/demo.json"), {"pipeline.lighting.format=fixed:0.16"});
+  const modules::RenderResult r = modules::render_loop(s);
+  const auto stats = r.stats_json();
+  CHECK(stats["blocks"]["lighting"]["numbers"]["overflows"].get<uint64_t>() > 0);
+  CHECK(stats["blocks"]["normalize"]["numbers"]["overflows"] == 0);
+  CHECK(stats["blocks"]["normalize"]["numbers"]["format"] == "float32");
+  float brightest = 0;
+  for (const char* c : {"R", "G", "B"})
+    for (float v : r.frame.find(c)->values) brightest = std::max(brightest, v);
+  CHECK(brightest <= 1.0f - 0x1p-16f);
+}
