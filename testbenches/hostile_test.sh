@@ -52,6 +52,9 @@ hostile zero-resolution "camera.resolution.1" render neg.json --set 'camera.reso
 hostile huge-resolution "camera.resolution.0" render neg.json --set 'camera.resolution=[1000000,24]'
 hostile degenerate-camera "camera.target" render neg.json --set 'camera.target=[0,0,4]'
 hostile bad-override "--set" render neg.json --set 'objects.7.radius=1'
+hostile bad-number-format "pipeline.number_format" render neg.json --set 'pipeline.number_format=float64'
+hostile too-wide-fixed "pipeline.normalize.format" render neg.json --set 'pipeline.normalize.format=fixed:20.40'
+hostile number-format-type "pipeline.lighting.format" render neg.json --set 'pipeline.lighting.format=16'
 nine='{"type": "directional", "direction": [0,-1,0]}'
 hostile too-many-lights "at most 8 lights" render neg.json --set "lights=[$nine,$nine,$nine,$nine,$nine,$nine,$nine,$nine,$nine]"
 
