@@ -1,6 +1,5 @@
 #include "core/number_format.hpp"
 
-#include <cstdio>
 #include <stdexcept>
 
 namespace core {
@@ -9,10 +8,14 @@ NumberFormat NumberFormat::parse(const std::string& name) {
   if (name == "float32") return {};
   if (name == "float16") return {Kind::Float16, 0, 0};
   if (name.rfind("fixed:", 0) == 0) {
-    int i = -1, f = -1, consumed = 0;
+    // fixed:<digits>.<digits>, nothing else (no sign, no space).
     const std::string body = name.substr(6);
-    if (std::sscanf(body.c_str(), "%d.%d%n", &i, &f, &consumed) == 2 && size_t(consumed) == body.size() &&
-        body.find_first_of("+- ") == std::string::npos) {
+    const size_t dot = body.find('.');
+    auto digits = [](const std::string& t) {
+      return !t.empty() && t.size() <= 3 && t.find_first_not_of("0123456789") == std::string::npos;
+    };
+    if (dot != std::string::npos && digits(body.substr(0, dot)) && digits(body.substr(dot + 1))) {
+      const int i = std::stoi(body.substr(0, dot)), f = std::stoi(body.substr(dot + 1));
       if (i > kMaxIntBits) throw std::invalid_argument("at most " + std::to_string(kMaxIntBits) + " integer bits");
       if (f < 1 || f > kMaxFracBits)
         throw std::invalid_argument("1 to " + std::to_string(kMaxFracBits) + " fraction bits");

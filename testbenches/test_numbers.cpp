@@ -8,6 +8,7 @@
 
 #include "core/compare.hpp"
 #include "modules/common/number.hpp"
+#include "modules/parallax/parallax_kernel.hpp"
 #include "modules/pipeline/pipeline.hpp"
 #include "test_util.hpp"
 
@@ -81,6 +82,33 @@ TEST_CASE("float16 arithmetic rounds each result once and counts overflows and i
   const Half inf = big + big;
   (void)(inf - inf);  // NaN from an infinity: counted (the operands are not NaN)
   CHECK(context.events.invalid == 2);
+  CHECK(context.events.overflows == 2);  // big + big once more
+  CHECK(std::isinf(float(a / Half(0.0f))));  // infinite already before rounding: an overflow too
+  CHECK(std::isinf(float(modules::rsqrt_op(Half(0.0f)))));
+  CHECK(context.events.overflows == 4);
+}
+
+TEST_CASE("float16 parallax tracer on rays that overflow it: the entry kept, never a non-finite uv", "[numbers]") {
+  // Grazing rays run ~10^6 texels before the floor: far past float16's 65504.
+  core::Texture steps;
+  steps.width = steps.height = 16;
+  steps.texels.resize(256);
+  for (int i = 0; i < 256; ++i) steps.texels[size_t(i)] = glm::vec4(((i % 16) / 4 + (i / 64)) % 2 ? 1.0f : 0.0f);
+  NumberContext half(core::NumberFormat::parse("float16"));
+  for (auto method : {core::ParallaxMethod::Relief, core::ParallaxMethod::Pom, core::ParallaxMethod::Cone,
+                      core::ParallaxMethod::Distance}) {
+    core::ParallaxSettings s;
+    s.method = method;
+    s.depth = 0.1;
+    s.layers_max = 64;
+    const modules::ParallaxMaps maps = modules::build_parallax_maps(steps, s, "steps");
+    for (float c : {-1e-6f, -1e-4f, -0.5f}) {
+      INFO(int(method) << " c " << c);
+      const modules::ParallaxTrace t = modules::trace_parallax(s, maps, 3.3f, 5.1f, 0.7f, 0.3f, c, nullptr, &half);
+      CHECK(std::isfinite(t.x));
+      CHECK(std::isfinite(t.y));
+    }
+  }
 }
 
 TEST_CASE("fixed point: the grid, rounding, saturation and the events counted", "[numbers]") {
@@ -128,7 +156,9 @@ TEST_CASE("number format names: parsed, printed, and bad ones refused naming the
   CHECK(core::NumberFormat::parse("fixed:0.15").name() == "fixed:0.15");
   CHECK(core::NumberFormat::parse("fixed:30.22").name() == "fixed:30.22");
   for (const char* bad : {"float64", "fixed", "fixed:3", "fixed:3.", "fixed:3.4x", "fixed:-1.4", "fixed:+3.4",
-                          "fixed:3. 4", "fixed:31.4", "fixed:3.0", "fixed:3.49", "fixed:10.43", "Fixed:3.4"}) {
+                          "fixed:3. 4", "fixed:31.4", "fixed:3.0", "fixed:3.49", "fixed:10.43", "Fixed:3.4",
+                          "fixed:3.\t4", "fixed:\n3.4", "fixed:4294967196.48", "fixed:99999999999999999999.4",
+                          "fixed:0x3.4", "fixed:.4", "fixed:3.4.5"}) {
     INFO(bad);
     CHECK_THROWS_AS(core::NumberFormat::parse(bad), std::invalid_argument);
   }
@@ -179,4 +209,20 @@ TEST_CASE("fixed-point overflow saturates the colour and is counted in the block
   for (const char* c : {"R", "G", "B"})
     for (float v : r.frame.find(c)->values) brightest = std::max(brightest, v);
   CHECK(brightest <= 1.0f - 0x1p-16f);
+}
+
+TEST_CASE("float16 lighting under a light past its range: counted, and no infinity reaches the frame, specular composite included",
+          "[numbers]") {
+  // Radiance 10^6 overflows float16 (65504) in the diffuse and specular factors; on the
+  // texture-object path the specular term is composited after the frame (texel_project).
+  const core::Scene s = core::load_scene(test::source_path("golden/texture-object/scene.json"),
+                                         {"lights.0.intensity=1e6", "pipeline.lighting.format=float16"});
+  const modules::RenderResult r = modules::render_loop(s);
+  const auto stats = r.stats_json();
+  CHECK(stats["blocks"]["lighting"]["numbers"]["overflows"].get<uint64_t>() > 0);
+  CHECK(stats["blocks"]["lighting"]["numbers"]["nonfinite"].get<uint64_t>() > 0);
+  CHECK(stats["nonfinite_replaced"].get<uint64_t>() > 0);
+  for (const auto& c : r.frame.channels)
+    if (c.name != "Z")
+      for (float v : c.values) REQUIRE(std::isfinite(v));
 }

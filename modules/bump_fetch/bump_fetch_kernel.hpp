@@ -33,7 +33,7 @@ class BumpFetchKernel {
 
   void process(SpanPacket& p) {
     fetch(p);
-    for (int c = 0; c < 3; ++c) nonfinite_ += count_nonfinite(p.bump[c], p.count);
+    nonfinite_ += count_nonfinite(p.bump, p.count);
   }
   // float32 datapaths; the non-finite values among the block's outputs.
   NumberStats numbers() const { return {"float32", nonfinite_, {}}; }

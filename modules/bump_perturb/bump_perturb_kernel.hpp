@@ -24,7 +24,7 @@ class BumpPerturbKernel {
 
   void process(SpanPacket& p) {
     perturb(p);
-    for (int c = 0; c < 3; ++c) nonfinite_ += count_nonfinite(p.n[c], p.count);
+    nonfinite_ += count_nonfinite(p.n, p.count);
   }
   // float32 datapaths; the non-finite values among the block's outputs.
   NumberStats numbers() const { return {"float32", nonfinite_, {}}; }

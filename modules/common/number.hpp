@@ -7,18 +7,23 @@
 // Half and Fixed compute each operation exactly (in double) and round the result once
 // to their format, as a hardware unit of that width would:
 //   Half   round to nearest even; beyond 65504 the result is ±infinity (IEEE)
-//   Fixed  round to nearest (ties up, as an adder of the half-LSB does); results beyond
-//          the format saturate to its largest or smallest value
+//   Fixed  round to nearest — products ties up (the half-LSB adder of a multiplier),
+//          quotients ties away from zero, conversions and the elementary functions
+//          ties to even — and results beyond the format saturate to its largest or
+//          smallest value
 // The events that a designer must know about are counted per block: overflows (a
 // saturation, or an infinite result from finite operands) and invalid operations (a
 // NaN from non-NaN operands, a division by zero or a square root of a negative in fixed
 // point). The formats of the block running are held in a NumberContext the block owns;
-// the model runs on one thread, so the context in force is a plain global.
+// the model runs on one thread, so the context in force is a plain global. An event is
+// counted each time it happens: a constant that saturates when a block rounds it to its
+// format (once per packet, or per pixel) counts every time.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <string>
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "core/number_format.hpp"
 #include "modules/common/ops.hpp"
@@ -39,6 +44,8 @@ struct NumberContext {
 
   explicit NumberContext(core::NumberFormat f = {}) : format(f) {
     if (f.kind != core::NumberFormat::Kind::Fixed) return;
+    if (f.int_bits < 0 || f.frac_bits < 1 || f.int_bits + f.frac_bits > core::NumberFormat::kMaxBits)
+      throw std::invalid_argument("fixed-point format out of range: " + f.name());
     frac_bits = f.frac_bits;
     max_raw = (int64_t(1) << (f.int_bits + f.frac_bits)) - 1;
     min_raw = -max_raw - 1;
@@ -98,7 +105,12 @@ class Half {
   // The result x of an operation on a and b: a NaN from non-NaN operands is counted
   // (a NaN coming in is the operand's event, counted where it arose).
   static Half result(double x, Half a, Half b) {
-    if (std::isnan(x) && !std::isnan(a.v_) && !std::isnan(b.v_) && number_context) ++number_context->events.invalid;
+    if (number_context && !std::isfinite(x)) {
+      if (std::isnan(x) && !std::isnan(a.v_) && !std::isnan(b.v_)) ++number_context->events.invalid;
+      // Infinite already in double (x/0, rsqrt(0), a power past double's range): an
+      // overflow (the constructor counts the finite results rounded to infinity).
+      if (std::isinf(x) && std::isfinite(a.v_) && std::isfinite(b.v_)) ++number_context->events.overflows;
+    }
     return x;
   }
   static Half result(double x, Half a) { return result(x, a, a); }
@@ -221,11 +233,37 @@ inline uint64_t count_nonfinite(const float* v, int n) {
   return bad;
 }
 
+// The same over the first n columns of R rows (a packet's x, y, z or r, g, b arrays):
+// one loop for all rows, so that a short span pays the loop's set-up once. (Blocks of 8
+// columns with the ones past n masked off were tried: not vectorized, 60 % slower.)
+template <size_t R, size_t N>
+uint64_t count_nonfinite(const float (&rows)[R][N], int n) {
+  uint32_t bad = 0;
+  for (int i = 0; i < n; ++i)
+    for (size_t r = 0; r < R; ++r) {
+      uint32_t bits;
+      std::memcpy(&bits, &rows[r][i], sizeof bits);
+      bad += (bits & 0x7f800000u) == 0x7f800000u;
+    }
+  return bad;
+}
+
 // What a block reports of its numbers (BlockStats).
 struct NumberStats {
   std::string format = "float32";
   uint64_t nonfinite = 0;  // NaN or infinite values among the block's outputs
   NumberEvents events;
+  bool counted = true;     // false: the block does not test its outputs (see checks_outputs)
 };
+
+// Whether a block tests its outputs for NaN and infinity: always in a reduced format;
+// in float32 only where a finite input can give a non-finite result — a division or a
+// reciprocal square root (normalize, vector_interp, …). A float32 block that only adds
+// and multiplies bounded values (the walker, lighting) passes on what it was given,
+// counted where it arose; the test cost 43 instructions a pixel on the Phong path when
+// every block made it (docs/numerical-stability.md), and the framebuffer catches all.
+inline bool checks_outputs(const core::NumberFormat& format, bool divides) {
+  return divides || format.kind != core::NumberFormat::Kind::Float32;
+}
 
 }  // namespace modules

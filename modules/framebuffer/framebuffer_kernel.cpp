@@ -41,18 +41,26 @@ void FramebufferKernel::process(SpanPacket& p) {
     const bool parallax = p.tri->material->path == core::ShadingPath::Parallax;
     for (int i = 0; i < p.count; ++i) iterations_[base + size_t(i)] = parallax ? p.iterations[i] : 0.0f;
   }
-  // The last guard: a NaN or an infinity never reaches the frame. Counted (the stress
-  // tests read the count; each block's own count says where it arose), written as 0.
-  uint64_t bad = 0;
-  for (int c = 0; c < 3; ++c) bad += count_nonfinite(p.rgb[c], p.count) + count_nonfinite(p.n[c], p.count);
+  // The last guard: a NaN or an infinity never reaches the frame. What arrives — colour,
+  // specular term (composited later by texel_project), normal, depth — is counted (the
+  // stress tests read the count; each block's own count says where it arose) and
+  // written as 0 (depth: +infinity, the background's).
+  const bool splatted = p.tri->material->path == core::ShadingPath::TextureObject;
+  const uint64_t bad = count_nonfinite(p.w, p.count) + count_nonfinite(p.rgb, p.count) +
+                       count_nonfinite(p.n, p.count) + (splatted ? count_nonfinite(p.spec, p.count) : 0);
   if (bad > 0) {
     nonfinite_ += bad;
-    for (int l = 0; l < 8; ++l)
+    for (int l : {0, 1, 2, 5, 6, 7})
       for (int i = 0; i < p.count; ++i)
         if (!std::isfinite(layer_[l][base + i])) layer_[l][base + i] = 0.0f;
+    for (int i = 0; i < p.count; ++i)
+      if (!std::isfinite(layer_[4][base + i])) layer_[4][base + i] = std::numeric_limits<float>::infinity();
+    if (splatted)
+      for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < p.count; ++i)
+          if (!std::isfinite(p.spec[c][i])) p.spec[c][i] = 0.0f;
   }
   if (visible_.empty()) return;
-  const bool splatted = p.tri->material->path == core::ShadingPath::TextureObject;
   for (int i = 0; i < p.count; ++i) {
     const size_t at = base + i;
     visible_[at] = splatted ? p.tri->source + 1 : 0;  // a nearer surface hides it

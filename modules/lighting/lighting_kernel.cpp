@@ -7,7 +7,8 @@
 
 namespace modules {
 
-LightingKernel::LightingKernel(const core::Scene& scene, core::NumberFormat format) : numbers_(format) {
+LightingKernel::LightingKernel(const core::Scene& scene, core::NumberFormat format)
+    : numbers_(format), checks_(checks_outputs(format, false)) {
   for (int c = 0; c < 3; ++c) ambient_[c] = float(scene.ambient[c]);
   const glm::dvec3 view = -scene.camera.forward();
   for (const auto& l : scene.lights) {
@@ -43,8 +44,7 @@ void LightingKernel::process(SpanPacket& p) {
   const bool deferred = m.path == core::ShadingPath::TextureObject;
   const bool textured = m.texture >= 0 && !deferred;
   with_number_type(numbers_, [&](auto zero) { shade<decltype(zero)>(p); });
-  for (int c = 0; c < 3; ++c)
-    nonfinite_ += count_nonfinite(p.rgb[c], p.count) + (deferred ? count_nonfinite(p.spec[c], p.count) : 0);
+  if (checks_) nonfinite_ += count_nonfinite(p.rgb, p.count) + (deferred ? count_nonfinite(p.spec, p.count) : 0);
   ops_ += ops_per_pixel(textured) * uint64_t(p.count);
   if (p.count > 0) ops_ += ops_per_span();
 }

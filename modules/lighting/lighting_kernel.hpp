@@ -24,7 +24,7 @@ class LightingKernel {
   const Ops& ops() const { return ops_; }
   uint64_t work(const SpanPacket& p) const { return uint64_t(p.count) * lights_.size(); }
   bool bypass(const SpanPacket&) const { return false; }
-  NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
+  NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events, checks_}; }
 
   Ops ops_per_pixel(bool textured) const;
   Ops ops_per_span() const;
@@ -51,6 +51,7 @@ class LightingKernel {
   bool capture_ = false;
   float captured_[2][kSpanMax] = {};
   NumberContext numbers_;
+  bool checks_;  // counts its non-finite outputs (checks_outputs: products and sums of bounded values)
   uint64_t nonfinite_ = 0;
 };
 

@@ -4,7 +4,7 @@ namespace modules {
 
 void NormalInterpKernel::process(SpanPacket& p) {
   with_number_type(numbers_, [&](auto zero) { walk<decltype(zero)>(p); });
-  for (int c = 0; c < 3; ++c) nonfinite_ += count_nonfinite(p.n[c], p.count);
+  if (checks_) nonfinite_ += count_nonfinite(p.n, p.count);
 }
 
 template <class T>

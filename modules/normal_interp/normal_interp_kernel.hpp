@@ -27,8 +27,9 @@ class NormalInterpKernel {
   // reseed: 0 walks the whole triangle from its seed (the paper's); −1 takes every row
   // start from the plane; N > 0 also every N pixels along the row (normal_interp.reseed).
   // The walker's adders and registers are of `format` (pipeline.normal_interp.format):
-  // the increments from setup are rounded to it once per triangle.
-  explicit NormalInterpKernel(int reseed = 0, core::NumberFormat format = {}) : reseed_(reseed), numbers_(format) {}
+  // the increments from setup are rounded to it as each packet starts.
+  explicit NormalInterpKernel(int reseed = 0, core::NumberFormat format = {})
+      : reseed_(reseed), numbers_(format), checks_(checks_outputs(format, false)) {}
   // A re-seed: a0 + ax·dx + ay·dy for three components.
   static constexpr Ops kOpsPerReseed{/*add*/ 6, /*mul*/ 6};
   void process(SpanPacket& p);
@@ -40,7 +41,7 @@ class NormalInterpKernel {
   // would discard it): their packets do not walk.
   bool bypass(const SpanPacket& p) const { return core::fetches_normal(p.tri->material->path); }
   Ranges ranges() const { return {{"n", range_}}; }
-  NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
+  NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events, checks_}; }
   // Waveforms: the interpolated (not yet normalized) normal, N or N/w.
   void set_capture(bool) {}
   static std::vector<std::string> trace_names() { return {"n_x", "n_y", "n_z"}; }
@@ -60,6 +61,7 @@ class NormalInterpKernel {
   uint64_t steps_ = 0, last_steps_ = 0;
   Ops ops_;
   NumberContext numbers_;
+  bool checks_;  // counts its non-finite outputs (checks_outputs: adders only)
   uint64_t nonfinite_ = 0;
   ValueRange range_;  // the walked normal, N or N/w
 };

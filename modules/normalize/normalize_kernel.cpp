@@ -44,7 +44,7 @@ void NormalizeKernel::process(SpanPacket& p) {
                                  ? NormalizeMode::Exact
                                  : mode_;
   with_number_type(numbers_, [&](auto zero) { normalize_as<decltype(zero)>(p, mode); });
-  for (int c = 0; c < 3; ++c) nonfinite_ += count_nonfinite(p.n[c], p.count);
+  nonfinite_ += count_nonfinite(p.n, p.count);
   ops_ += normalize_ops_per_pixel(mode) * uint64_t(p.count);
   if (p.count > 0) ops_ += normalize_ops_per_span(mode);
 }

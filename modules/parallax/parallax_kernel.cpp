@@ -38,6 +38,13 @@ constexpr Ops kOpsCone{/*add*/ 5, /*mul*/ 3, /*div*/ 2, 0, 0, 0, /*fetch*/ 1};  
 constexpr Ops kOpsCell{/*add*/ 16, /*mul*/ 18, /*div*/ 2, /*sqrt*/ 1, 0, 0, /*fetch*/ 4};  // exact cell test
 constexpr Ops kOpsOut{/*add*/ 4, /*mul*/ 2};  // texels back to uv
 
+// Whether a value of the tracer is finite (float16 overflows to infinity; the value
+// must not reach a texel index).
+template <class T>
+bool finite(T v) {
+  return std::isfinite(float(v));
+}
+
 // The texture unit's bilinear height at (x, y), in float32 like every texture read; the
 // tracer takes it into its format.
 template <class T>
@@ -52,6 +59,7 @@ template <class T>
 void finish_cells(const core::ParallaxSettings& s, const ParallaxMaps& m, T& x, T& y, T& z, T dx, T dy, T dz,
                   ParallaxTrace& r, Ops* ops) {
   const int budget = std::max(1, s.max_iterations - r.iterations);
+  if (!finite(x) || !finite(y) || !finite(z)) return;
   const float fdx = float(dx), fdy = float(dy), fdz = float(dz);
   const auto march =
       core::march_cells<float>(m.field, float(x), float(y), float(z), fdx, fdy, fdz, float(m.slices), budget);
@@ -77,8 +85,10 @@ ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, f
   // The ray in the tracer's space (core/parallax_map.hpp): x along u, y down the rows,
   // z in slices of the depth.
   T dx = a * W, dy = -b * H, dz = c * D / T(float(s.depth));
-  const T scale = one / sqrt_op(dx * dx + dy * dy + dz * dz);
-  if (!std::isfinite(float(scale)) || scale == zero) return r;
+  const T length2 = dx * dx + dy * dy + dz * dz;
+  if (!(length2 > zero)) return r;  // no direction (before a reciprocal of 0)
+  const T scale = one / sqrt_op(length2);
+  if (!finite(scale) || scale == zero) return r;
   dx *= scale, dy *= scale, dz *= scale;  // unit in the tracer's space
   // A ray this close to the surface would run over 10⁶ texels: treated as parallel.
   if (-dz < T(1e-6f) || !(dz < zero)) return r;
@@ -108,6 +118,7 @@ ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, f
       for (int i = 1; i <= layers && r.iterations < s.max_iterations; ++i) {
         const T along = T(float(i)) * step;
         x = x0 + along * dx, y = y0 + along * dy, z = D + along * dz;
+        if (!finite(x) || !finite(y)) return r;  // overflowed (float16): counted; the entry kept
         h = D * height_at(f, x, y);
         ++r.iterations, r.fetches += 4;
         if (ops) *ops += kOpsLayer;
@@ -164,6 +175,7 @@ ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, f
       // free of relief — until it has come down to apex + (distance from the footprint)/ratio.
       const T across = sqrt_op(dx * dx + dy * dy), down = -dz, near = T(kParallaxNear);
       while (r.iterations < s.max_iterations) {
+        if (!finite(x) || !finite(y)) return r;  // overflowed (float16): counted; the entry kept
         int i = int(float(floor_op(x))) % f.width, j = int(float(floor_op(y))) % f.height;
         if (i < 0) i += f.width;
         if (j < 0) j += f.height;
@@ -187,6 +199,7 @@ ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, f
     r.iterations += idle, r.fetches += idle;
     if (ops) *ops += (s.method == core::ParallaxMethod::Cone ? kOpsCone : kOpsSphere) * uint64_t(idle);
   }
+  if (!finite(x) || !finite(y)) return r;  // overflowed (float16): counted; the entry kept
   r.x = float(x), r.y = float(y);
   if (ops) *ops += kOpsOut;
   return r;
@@ -253,7 +266,7 @@ void ParallaxKernel::process(SpanPacket& p) {
   }
   ops_ += Ops{/*add*/ 5, /*mul*/ 5} * uint64_t(p.count);  // uv and the tangent-space eye vector, per pixel
   if (p.count > 0) ops_ += Ops{/*add*/ 10, /*mul*/ 10};   // five plane seeds
-  nonfinite_ += count_nonfinite(p.uvp[0], p.count) + count_nonfinite(p.uvp[1], p.count);
+  nonfinite_ += count_nonfinite(p.uvp, p.count);
   iterations_ += iterations;
   last_iterations_ = iterations;  // one iteration a cycle
 }

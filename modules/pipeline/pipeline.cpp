@@ -365,7 +365,8 @@ nlohmann::json RenderResult::stats_json() const {
     if (!b.ranges.empty()) bj["ranges"] = to_json(b.ranges);
     if (!b.details.is_null()) bj["details"] = b.details;
     if (b.numbers) {
-      bj["numbers"] = {{"format", b.numbers->format}, {"nonfinite", b.numbers->nonfinite},
+      bj["numbers"] = {{"format", b.numbers->format},
+                       {"nonfinite", b.numbers->counted ? nlohmann::json(b.numbers->nonfinite) : nlohmann::json()},
                        {"overflows", b.numbers->events.overflows}, {"invalid", b.numbers->events.invalid}};
       numbers["nonfinite"] = numbers["nonfinite"].get<uint64_t>() + b.numbers->nonfinite;
       numbers["overflows"] = numbers["overflows"].get<uint64_t>() + b.numbers->events.overflows;

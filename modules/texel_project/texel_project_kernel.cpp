@@ -248,6 +248,9 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
       const T inv_w = one / cw;
       const T x = (cx * inv_w * half + half) * width_t - half;  // pixel centres at +½
       const T y = (half - cy * inv_w * half) * height_t - half;
+      // A non-finite position (a reduced format's overflow) is counted, and dropped with
+      // the texels off the frame.
+      nonfinite_ += !std::isfinite(float(x)) + !std::isfinite(float(y));
       if (!(x > -one && y > -one && x < width_t && y < height_t)) continue;  // off the frame
       ++texels_;
       ops_ += kOpsPerTexel;
@@ -277,7 +280,6 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
       const T fx = x - fx0, fy = y - fy0;
       const T weight_t[4] = {(one - fx) * (one - fy), fx * fy, fx * (one - fy), (one - fx) * fy};  // S1 … S4
       const float weight[4] = {float(weight_t[0]), float(weight_t[1]), float(weight_t[2]), float(weight_t[3])};
-      nonfinite_ += count_nonfinite(weight, 4);
       const int px0 = int(float(fx0)), py0 = int(float(fy0));
       const int px[4] = {px0, px0 + 1, px0 + 1, px0};
       const int py[4] = {py0, py0 + 1, py0, py0 + 1};

@@ -60,7 +60,7 @@ class TexelProjectKernel {
   // tiles are writes across units, counted), then the resolve, spread likewise.
   uint64_t cycles() const { return cycles_; }
   nlohmann::json stats() const;
-  // Non-finite counts are of the splat weights.
+  // Non-finite counts are of the texels' screen positions (dropped as off the frame).
   NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
 
   uint64_t polygons() const { return polygons_; }

@@ -25,7 +25,7 @@ class TextureFetchKernel {
 
   void process(SpanPacket& p) {
     fetch(p);
-    for (int c = 0; c < 3; ++c) nonfinite_ += count_nonfinite(p.tex[c], p.count);
+    nonfinite_ += count_nonfinite(p.tex, p.count);
   }
   // float32 datapaths; the non-finite values among the block's outputs.
   NumberStats numbers() const { return {"float32", nonfinite_, {}}; }

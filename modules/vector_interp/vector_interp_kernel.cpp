@@ -89,9 +89,7 @@ void VectorInterpKernel::process(SpanPacket& p) {
     const LightSlot* s = nullptr;
     for (const auto& slot : lights_) s = slot.light == k ? &slot : s;
     const bool l_written = in_space || (s && s->plane >= 0), h_written = in_space || s;
-    for (int c = 0; c < 3; ++c)
-      nonfinite_ += (l_written ? count_nonfinite(p.l[k][c], p.count) : 0) +
-                    (h_written ? count_nonfinite(p.h[k][c], p.count) : 0);
+    nonfinite_ += (l_written ? count_nonfinite(p.l[k], p.count) : 0) + (h_written ? count_nonfinite(p.h[k], p.count) : 0);
   }
   if (in_space) {
     ops_ += ops_per_pixel_in_space() * uint64_t(p.count);
