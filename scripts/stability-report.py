@@ -35,72 +35,54 @@ def error(scene, scale, mode, fmt):
     return float(s["error"]["n"]["max"]), float(s["error"]["rgb"]["max"])
 
 
-for title, scene, axis, name in [("span length", "long-spans.json", 0, "span"),
-                                 ("triangle height", "tall-triangle.json", 1, "height")]:
-    print("## Against %s\n" % title)
-    print("Largest error of the unit normal against the golden model's (and of the colour), float32.\n")
-    print("| %s (px) | " % title + " | ".join(MODES) + " |")
-    print("|---|" + "---|" * len(MODES))
-    table = {m: [] for m in MODES}
+def sweep(title, scene, axis, heading, caption, columns, plot, plot_title, key):
+    """One table, rows the lengths, columns (label, re-seeding, format); with gnuplot,
+    the plot of the normal error of every column."""
+    print(heading + "\n")
+    print(caption + "\n")
+    print("| %s (px) | " % title + " | ".join(label for label, _, _ in columns) + " |")
+    print("|---|" + "---|" * len(columns))
+    series = {label: [] for label, _, _ in columns}
     for length in LENGTHS:
         s = length / 16384.0
         scale = (s, 1.0) if axis == 0 else (1.0, s)
         cells = []
-        for mode in MODES:
-            n, rgb = error(scene, scale, mode, "float32")
-            table[mode].append((length, n))
+        for label, mode, fmt in columns:
+            n, rgb = error(scene, scale, mode, fmt)
+            series[label].append((length, n))
             cells.append("%.1e (%.1e)" % (n, rgb))
         print("| %d | %s |" % (length, " | ".join(cells)))
     print()
-    if shutil.which("gnuplot"):
-        data = os.path.join(TMP, name + ".dat")
-        with open(data, "w") as f:
-            for mode in MODES:
-                for length, n in table[mode]:
-                    f.write("%d %g\n" % (length, max(n, 1e-9)))
-                f.write("\n\n")
-        plot = ", ".join("'%s' index %d with linespoints lw 2 title '%s'" % (data, k, m) for k, m in enumerate(MODES))
-        script = "\n".join(["set terminal png size 800,500 noenhanced",
-                            "set output '%s'" % os.path.join(OUT, "stability-%s.png" % name),
-                            "set logscale xy", "set grid", "set key left top",
-                            "set title 'normal error against %s, float32, by re-seeding'" % title,
-                            "set xlabel '%s (pixels)'" % title, "set ylabel 'max |N - N_exact|'", "plot " + plot])
-        subprocess.run(["gnuplot"], input=script, text=True, check=True)
+    if not shutil.which("gnuplot"):
+        return
+    data = os.path.join(TMP, plot + ".dat")
+    with open(data, "w") as f:
+        for label, _, _ in columns:
+            for length, n in series[label]:
+                f.write("%d %g\n" % (length, max(n, 1e-9)))
+            f.write("\n\n")
+    dashed = len({fmt for _, _, fmt in columns}) > 1  # per format: re-seeded dashed
+    lines = ", ".join("'%s' index %d with linespoints lw 2 dt %d title '%s'" % (data, k, 2 if dashed and k % 2 else 1, c[0])
+                      for k, c in enumerate(columns))
+    script = "\n".join(["set terminal png size 800,500 noenhanced",
+                        "set output '%s'" % os.path.join(OUT, plot + ".png"),
+                        "set logscale xy", "set grid", "set key " + key, "set title '%s'" % plot_title,
+                        "set xlabel '%s (pixels)'" % title, "set ylabel 'max |N - N_exact|'", "plot " + lines])
+    subprocess.run(["gnuplot"], input=script, text=True, check=True)
 
+
+DIRECTIONS = [("span length", "long-spans.json", 0, "span", "tile32"),
+              ("triangle height", "tall-triangle.json", 1, "height", "line")]
+for title, scene, axis, name, _ in DIRECTIONS:
+    sweep(title, scene, axis, "## Against %s" % title,
+          "Largest error of the unit normal against the golden model's (and of the colour), float32.",
+          [(mode, mode, "float32") for mode in MODES], "stability-" + name,
+          "normal error against %s, float32, by re-seeding" % title, "left top")
 # Per format of the walker: no re-seeding, and the re-seeding that bounds the direction.
-for title, scene, axis, name, bound in [("span length", "long-spans.json", 0, "span", "tile32"),
-                                        ("triangle height", "tall-triangle.json", 1, "height", "line")]:
-    print("## Per number format, against %s\n" % title)
-    print("Largest error of the unit normal against the golden model's (and of the colour); "
-          "the walker in each format, the other blocks in float32.\n")
-    columns = ["%s, %s" % (fmt, mode) for fmt in FORMATS for mode in ("none", bound)]
-    print("| %s (px) | " % title + " | ".join(columns) + " |")
-    print("|---|" + "---|" * len(columns))
-    series = {c: [] for c in columns}
-    for length in LENGTHS:
-        s = length / 16384.0
-        scale = (s, 1.0) if axis == 0 else (1.0, s)
-        cells = []
-        for fmt in FORMATS:
-            for mode in ("none", bound):
-                n, rgb = error(scene, scale, mode, fmt)
-                series["%s, %s" % (fmt, mode)].append((length, n))
-                cells.append("%.1e (%.1e)" % (n, rgb))
-        print("| %d | %s |" % (length, " | ".join(cells)))
-    print()
-    if shutil.which("gnuplot"):
-        data = os.path.join(TMP, name + "-formats.dat")
-        with open(data, "w") as f:
-            for c in columns:
-                for length, n in series[c]:
-                    f.write("%d %g\n" % (length, max(n, 1e-9)))
-                f.write("\n\n")
-        plot = ", ".join("'%s' index %d with linespoints lw 2 dt %d title '%s'" % (data, k, 1 if k % 2 == 0 else 2, c)
-                         for k, c in enumerate(columns))
-        script = "\n".join(["set terminal png size 800,500 noenhanced",
-                            "set output '%s'" % os.path.join(OUT, "stability-formats-%s.png" % name),
-                            "set logscale xy", "set grid", "set key outside right",
-                            "set title 'normal error against %s, by format of the walker'" % title,
-                            "set xlabel '%s (pixels)'" % title, "set ylabel 'max |N - N_exact|'", "plot " + plot])
-        subprocess.run(["gnuplot"], input=script, text=True, check=True)
+for title, scene, axis, name, bound in DIRECTIONS:
+    sweep(title, scene, axis, "## Per number format, against %s" % title,
+          "Largest error of the unit normal against the golden model's (and of the colour); "
+          "the walker in each format, the other blocks in float32.",
+          [("%s, %s" % (fmt, mode), mode, fmt) for fmt in FORMATS for mode in ("none", bound)],
+          "stability-formats-" + name, "normal error against %s, by format of the walker" % title, "outside right")
 shutil.rmtree(TMP, ignore_errors=True)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "core/bump_map.hpp"
 #include "core/coverage.hpp"
@@ -218,6 +219,7 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
   const T ax_t[3] = {T(ax[0]), T(ax[1]), T(ax[2])}, ay_t[3] = {T(ay[0]), T(ay[1]), T(ay[2])};
   const T origin_t[3] = {T(origin[0]), T(origin[1]), T(origin[2])};
   const T one = T(1.0f), half = T(0.5f), w_min = T(1e-6f), width_t = T(float(width)), height_t = T(float(height));
+  uint64_t nonfinite_positions = 0;
   for (long j = j0; j <= j1; ++j) {
     const double v = 1 - (double(j) + 0.5) / GH, dv = v - uv[0].y;
     const double at_u0[3] = {1 - (-dv * t2.x + dv * t1.x) / det, -dv * t2.x / det, dv * t1.x / det};  // b_k at u = u0
@@ -248,10 +250,13 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
       const T inv_w = one / cw;
       const T x = (cx * inv_w * half + half) * width_t - half;  // pixel centres at +½
       const T y = (half - cy * inv_w * half) * height_t - half;
-      // A non-finite position (a reduced format's overflow) is counted, and dropped with
-      // the texels off the frame.
-      nonfinite_ += !std::isfinite(float(x)) + !std::isfinite(float(y));
-      if (!(x > -one && y > -one && x < width_t && y < height_t)) continue;  // off the frame
+      if (!(x > -one && y > -one && x < width_t && y < height_t)) {  // off the frame
+        // A non-finite position (a reduced format's overflow: in float32, w > 1e-6 keeps
+        // it finite) is dropped too, counted.
+        if constexpr (!std::is_same_v<T, float>)
+          nonfinite_positions += !std::isfinite(float(x)) + !std::isfinite(float(y));
+        continue;
+      }
       ++texels_;
       ops_ += kOpsPerTexel;
       auto& span = tile_span[size_t(floor_div(floor_div(j, mi), 4) - tile_row0)];
@@ -302,6 +307,7 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
       }
     }
   }
+  nonfinite_ += nonfinite_positions;
   });
   for (const auto& span : tile_span)
     if (span.first <= span.second) ops_.line += uint64_t(span.second - span.first + 1);
