@@ -89,12 +89,13 @@ TEST_CASE("float16 arithmetic rounds each result once and counts overflows and i
 }
 
 TEST_CASE("float16 parallax tracer on rays that overflow it: the entry kept, never a non-finite uv", "[numbers]") {
-  // Grazing rays run ~10^6 texels before the floor: far past float16's 65504.
+  // Rays a few 10^-7 off the surface step ~10^5 texels a layer: past float16's 65504.
   core::Texture steps;
   steps.width = steps.height = 16;
   steps.texels.resize(256);
   for (int i = 0; i < 256; ++i) steps.texels[size_t(i)] = glm::vec4(((i % 16) / 4 + (i / 64)) % 2 ? 1.0f : 0.0f);
   NumberContext half(core::NumberFormat::parse("float16"));
+  int kept = 0;
   for (auto method : {core::ParallaxMethod::Relief, core::ParallaxMethod::Pom, core::ParallaxMethod::Cone,
                       core::ParallaxMethod::Distance}) {
     core::ParallaxSettings s;
@@ -102,13 +103,20 @@ TEST_CASE("float16 parallax tracer on rays that overflow it: the entry kept, nev
     s.depth = 0.1;
     s.layers_max = 64;
     const modules::ParallaxMaps maps = modules::build_parallax_maps(steps, s, "steps");
-    for (float c : {-1e-6f, -1e-4f, -0.5f}) {
+    for (float c : {-1.5e-7f, -5e-7f, -1e-4f, -0.5f}) {
       INFO(int(method) << " c " << c);
+      const uint64_t overflows = half.events.overflows;
       const modules::ParallaxTrace t = modules::trace_parallax(s, maps, 3.3f, 5.1f, 0.7f, 0.3f, c, nullptr, &half);
       CHECK(std::isfinite(t.x));
       CHECK(std::isfinite(t.y));
+      if (half.events.overflows > overflows) {  // this ray overflowed: its entry is kept
+        CHECK(t.x == 3.3f);
+        CHECK(t.y == 5.1f);
+        ++kept;
+      }
     }
   }
+  CHECK(kept > 0);  // the grazing layered rays do overflow float16
 }
 
 TEST_CASE("fixed point: the grid, rounding, saturation and the events counted", "[numbers]") {
@@ -133,6 +141,8 @@ TEST_CASE("fixed point: the grid, rounding, saturation and the events counted", 
   // Quotients round to nearest; a division by zero saturates and is counted.
   CHECK(double(Fixed(1.0) / Fixed(3.0)) == 0.3125);        // 5.33 LSB → 5
   CHECK(double(Fixed(-1.0) / Fixed(3.0)) == -0.3125);
+  CHECK(double(Fixed(0.0625) / Fixed(2.0)) == 0.0625);     // half an LSB: away from zero
+  CHECK(double(Fixed(-0.0625) / Fixed(2.0)) == -0.0625);
   CHECK(double(Fixed(1.0) / Fixed(0.0)) == 7.9375);
   CHECK(double(Fixed(-1.0) / Fixed(0.0)) == -8.0);
   CHECK(context.events.invalid == 2);
@@ -175,8 +185,9 @@ TEST_CASE("number format names: parsed, printed, and bad ones refused naming the
 }
 
 TEST_CASE("a wide fixed-point format runs the same algorithms as float32, a narrow one shows its error", "[numbers]") {
-  // Every formatted block at once, on the demo (Phong, point light, local viewer) and a
-  // texture-object scene. fixed:12.40 keeps more bits than float32 over these ranges:
+  // Every formatted block these scenes elaborate at once (all but parallax, which
+  // test_parallax and the float16 tracer test cover), on the demo (Phong, point light,
+  // local viewer) and a texture-object scene. fixed:12.40 keeps more bits than float32 over these ranges:
   // the frame must match float32's to a few float32 ulps of colour; float16 must not.
   for (const std::string file : {"scenes/demo.json", "golden/texture-object/scene.json"}) {
     INFO(file);
@@ -198,13 +209,18 @@ TEST_CASE("a wide fixed-point format runs the same algorithms as float32, a narr
 }
 
 TEST_CASE("fixed-point overflow saturates the colour and is counted in the block that overflowed", "[numbers]") {
-  // fixed:0.16 holds [−1, 1): the demo's brightest colours saturate in lighting only.
-  const core::Scene s = core::load_scene(test::source_path("scenes/demo.json"), {"pipeline.lighting.format=fixed:0.16"});
+  // fixed:0.16 holds [−1, 1): the demo's brightest colours saturate in lighting; the
+  // blocks before it, in a wide fixed format, count nothing.
+  const core::Scene s = core::load_scene(test::source_path("scenes/demo.json"),
+                                         {"pipeline.number_format=fixed:12.30", "pipeline.lighting.format=fixed:0.16"});
   const modules::RenderResult r = modules::render_loop(s);
   const auto stats = r.stats_json();
   CHECK(stats["blocks"]["lighting"]["numbers"]["overflows"].get<uint64_t>() > 0);
-  CHECK(stats["blocks"]["normalize"]["numbers"]["overflows"] == 0);
-  CHECK(stats["blocks"]["normalize"]["numbers"]["format"] == "float32");
+  for (const char* block : {"normal_interp", "normalize", "vector_interp"}) {
+    INFO(block);
+    CHECK(stats["blocks"][block]["numbers"]["format"] == "fixed:12.30");
+    CHECK(stats["blocks"][block]["numbers"]["overflows"] == 0);
+  }
   float brightest = 0;
   for (const char* c : {"R", "G", "B"})
     for (float v : r.frame.find(c)->values) brightest = std::max(brightest, v);

@@ -38,16 +38,15 @@ TEST_CASE("stress scenes: no NaN or infinity reaches a frame, and coverage is th
     CHECK(r.stats_json()["nonfinite_replaced"].get<uint64_t>() == 0);
     CHECK(nonfinite(ref) == 0);
     CHECK(r.frame.at("A") == ref.at("A"));
-    // In float32 no block puts out a NaN or an infinity, or meets any number event.
-    // (The walker and lighting do not test their outputs in float32: null.)
+    // In float32 no block that tests its outputs puts out a NaN or an infinity. (The
+    // walker, lighting and texel_project do not test in float32: null. Events are
+    // counted in reduced formats only.)
     const auto stats = r.stats_json();
     for (const auto& [block, b] : stats["blocks"].items())
       if (b.contains("numbers")) {
         INFO(block);
-        const bool untested = block == "normal_interp" || block == "lighting";
+        const bool untested = block == "normal_interp" || block == "lighting" || block == "texel_project";
         CHECK(b["numbers"]["nonfinite"] == (untested ? nlohmann::json() : nlohmann::json(0)));
-        CHECK(b["numbers"]["overflows"] == 0);
-        CHECK(b["numbers"]["invalid"] == 0);
       }
   }
   CHECK(scenes >= 19);

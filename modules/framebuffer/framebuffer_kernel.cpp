@@ -44,7 +44,7 @@ void FramebufferKernel::process(SpanPacket& p) {
   // The last guard: a NaN or an infinity never reaches the frame. What arrives — colour,
   // specular term (composited later by texel_project), normal, depth — is counted (the
   // stress tests read the count; each block's own count says where it arose) and
-  // written as 0 (depth: +infinity, the background's).
+  // written as 0 (depth: the largest float, as far as a covered pixel can be).
   const bool splatted = p.tri->material->path == core::ShadingPath::TextureObject;
   const uint64_t bad = count_nonfinite(p.w, p.count) + count_nonfinite(p.rgb, p.count) +
                        count_nonfinite(p.n, p.count) + (splatted ? count_nonfinite(p.spec, p.count) : 0);
@@ -54,7 +54,7 @@ void FramebufferKernel::process(SpanPacket& p) {
       for (int i = 0; i < p.count; ++i)
         if (!std::isfinite(layer_[l][base + i])) layer_[l][base + i] = 0.0f;
     for (int i = 0; i < p.count; ++i)
-      if (!std::isfinite(layer_[4][base + i])) layer_[4][base + i] = std::numeric_limits<float>::infinity();
+      if (!std::isfinite(layer_[4][base + i])) layer_[4][base + i] = std::numeric_limits<float>::max();
     if (splatted)
       for (int c = 0; c < 3; ++c)
         for (int i = 0; i < p.count; ++i)

@@ -31,8 +31,8 @@ class FramebufferKernel {
   }
 
   core::Frame& frame() { return frame_; }
-  // Colour and normal values written that were NaN or infinite (none may be: the stress
-  // tests check it).
+  // Colour, normal, depth and specular values that arrived NaN or infinite, replaced
+  // before they reached the frame (in float32 none may arrive: the stress tests check it).
   uint64_t nonfinite() const { return nonfinite_; }
   // Deferred buffers (empty unless deferred): per pixel, 1 + the scene triangle of a
   // texture-object material seen there (0: none), and its specular term (3 floats).

@@ -163,6 +163,7 @@ ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, f
       // safe for every point of the voxel).
       const T near = T(kParallaxNear);
       while (r.iterations < s.max_iterations) {
+        if (!finite(x) || !finite(y) || !finite(z)) return r;  // overflowed (float16): counted; the entry kept
         const T d = T(m.volume.sample(float(x), float(y), float(z)));
         ++r.iterations, ++r.fetches;
         if (ops) *ops += kOpsSphere;

@@ -108,7 +108,7 @@ struct RenderResult {
   uint64_t bin_cycles = 0;          // of the blocks' busy_per_bin (0: none)
   uint64_t trace_records = 0;       // pixels written to the VCD, all blocks
   double precompute_s = 0;          // bump maps built when the pipeline was (not in wall_s)
-  uint64_t nonfinite_replaced = 0;   // NaN or infinite colour or normal values that reached the framebuffer (written as 0)
+  uint64_t nonfinite_replaced = 0;   // NaN or infinite colour, normal, depth or specular values that reached the framebuffer (replaced)
 
   const BlockReport* bottleneck() const;  // the block with the most busy cycles
   Ops total_ops() const;

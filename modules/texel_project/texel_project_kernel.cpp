@@ -246,7 +246,10 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
       const T cx = ax_t[0] * xr + ay_t[0] * yr + origin_t[0];
       const T cy = ax_t[1] * xr + ay_t[1] * yr + origin_t[1];
       const T cw = ax_t[2] * xr + ay_t[2] * yr + origin_t[2];
-      if (!(cw > w_min)) continue;
+      if (!(cw > w_min)) {  // behind the eye (or, in a reduced format, not finite: counted)
+        if constexpr (!std::is_same_v<T, float>) nonfinite_positions += !std::isfinite(float(cw));
+        continue;
+      }
       const T inv_w = one / cw;
       const T x = (cx * inv_w * half + half) * width_t - half;  // pixel centres at +½
       const T y = (half - cy * inv_w * half) * height_t - half;

@@ -60,8 +60,11 @@ class TexelProjectKernel {
   // tiles are writes across units, counted), then the resolve, spread likewise.
   uint64_t cycles() const { return cycles_; }
   nlohmann::json stats() const;
-  // Non-finite counts are of the texels' screen positions (dropped as off the frame).
-  NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
+  // Non-finite counts are of the texels' screen positions and w (dropped as off the
+  // frame), in reduced formats only: in float32, w > 1e-6 keeps the position finite.
+  NumberStats numbers() const {
+    return {numbers_.format.name(), nonfinite_, numbers_.events, checks_outputs(numbers_.format, false)};
+  }
 
   uint64_t polygons() const { return polygons_; }
   uint64_t lod_computations() const { return lod_computations_; }
