@@ -23,6 +23,7 @@ VectorInterpKernel::VectorInterpKernel(const core::Scene& scene, const std::vect
     for (int c = 0; c < 3; ++c) s.direction[c] = float(l[c]);
     // A directional light under a viewer at infinity has constant L and H: nothing here.
     if (s.plane >= 0 || local_viewer_) lights_.push_back(s);
+    if (i < size_t(kMaxLights)) writes_l_[i] = s.plane >= 0, writes_h_[i] = s.plane >= 0 || local_viewer_;
   }
 }
 
@@ -85,12 +86,9 @@ void VectorInterpKernel::process(SpanPacket& p) {
   });
   // Non-finite values among what was written: L and H of every light in the texture's
   // space; in the world, H of the lights listed and L of the point lights.
-  for (int k = 0; k < light_count_; ++k) {
-    const LightSlot* s = nullptr;
-    for (const auto& slot : lights_) s = slot.light == k ? &slot : s;
-    const bool l_written = in_space || (s && s->plane >= 0), h_written = in_space || s;
-    nonfinite_ += (l_written ? count_nonfinite(p.l[k], p.count) : 0) + (h_written ? count_nonfinite(p.h[k], p.count) : 0);
-  }
+  for (int k = 0; k < light_count_; ++k)
+    nonfinite_ += (in_space || writes_l_[k] ? count_nonfinite(p.l[k], p.count) : 0) +
+                  (in_space || writes_h_[k] ? count_nonfinite(p.h[k], p.count) : 0);
   if (in_space) {
     ops_ += ops_per_pixel_in_space() * uint64_t(p.count);
     // Three plane seeds a vector: V and L (affine), or L and H, of every light.

@@ -65,6 +65,7 @@ class VectorInterpKernel {
   Ops ops_;
   NumberContext numbers_;
   uint64_t nonfinite_ = 0;
+  bool writes_l_[kMaxLights] = {}, writes_h_[kMaxLights] = {};  // in the world: the lights' L and H it writes
 };
 
 }  // namespace modules
