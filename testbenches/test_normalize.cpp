@@ -95,7 +95,7 @@ TEST_CASE("normalize: the SystemC block returns unit normals in every mode", "[n
   modules::TriangleSetup tri;
   for (int c = 0; c < 3; ++c) tri.n[c].ax = comp(rng) * 0.01f;
   tri.c = 2.0f * (tri.n[0].ax * tri.n[0].ax + tri.n[1].ax * tri.n[1].ax + tri.n[2].ax * tri.n[2].ax);
-  modules::SpanPacket packet;
+  modules::SpanPacket packet{};  // zeroed: kernels may compute the lanes past a count (kLanes)
   int mode = 0;
   double worst[5] = {0, 0, 0, 0, 0};
   auto produce = [&](std::function<void(modules::SpanPacket&)> send) {

@@ -14,7 +14,7 @@
 struct Driver : sc_core::sc_module {
   tlm_utils::simple_initiator_socket<Driver> out{"out"};
   modules::TriangleSetup triangle;  // the packet's triangle: its ΔN_H and c
-  modules::SpanPacket packet;
+  modules::SpanPacket packet{};
   SC_CTOR(Driver) { SC_THREAD(run); }
   void run() {
     packet.tri = &triangle;

@@ -13,6 +13,14 @@ namespace modules {
 constexpr int kSpanMax = 64;   // pixels per packet
 constexpr int kMaxLights = 8;  // lights the lighting datapath holds
 
+// The float32 kernels' vector width: a kernel may compute a packet in whole groups of
+// kLanes pixels, the lanes past `count` on whatever an array holds there (values of an
+// earlier packet, or 0: the raster's packet starts zeroed), and nobody reads them. A
+// short span (15 pixels on average on a sphere) then runs no scalar tail loop.
+constexpr int kLanes = 4;
+static_assert(kSpanMax % kLanes == 0, "whole groups of lanes fit in a packet");
+inline int lanes(int count) { return (count + kLanes - 1) / kLanes * kLanes; }
+
 // An attribute as a plane over the screen, in pixel steps from the triangle's
 // reference pixel: a(x, y) = a0 + ax·(x − x_ref) + ay·(y − y_ref).
 struct Plane {

@@ -4,6 +4,7 @@
 #include <type_traits>
 
 #include "modules/common/vector.hpp"
+#include "modules/lighting/power.hpp"
 
 namespace modules {
 
@@ -45,8 +46,14 @@ void LightingKernel::process(SpanPacket& p) {
   const bool textured = m.texture >= 0 && !deferred;
   with_number_type(numbers_, [&](auto zero) { shade<decltype(zero)>(p); });
   if (checks_) nonfinite_ += count_nonfinite(p.rgb, p.count) + (deferred ? count_nonfinite(p.spec, p.count) : 0);
-  ops_ += ops_per_pixel(textured) * uint64_t(p.count);
-  if (p.count > 0) ops_ += ops_per_span();
+  tally_.add(textured ? 1 : 0, p.count);
+}
+
+Ops LightingKernel::ops() const {
+  Ops o;
+  for (int textured = 0; textured < 2; ++textured)
+    o += ops_per_pixel(textured) * tally_.pixels[textured] + ops_per_span() * tally_.packets[textured];
+  return o;
 }
 
 template <class T>
@@ -66,7 +73,8 @@ void LightingKernel::shade(SpanPacket& p) {
     }
   // Lights outer, pixels inner: straight pixel loops over arrays, which the compiler
   // vectorizes in float32; each pixel's arithmetic is the formula above, in order.
-  const int count = p.count;
+  // float32 in whole groups of lanes (kLanes: no scalar tails), the other formats pixel by pixel.
+  const int count = std::is_same_v<T, float> ? lanes(p.count) : p.count;
   const T zero = T(0.0f);
   // The sums: the packet's arrays in float32, registers of the format else.
   T rgb_regs[3][kSpanMax], spec_regs[3][kSpanMax];
@@ -108,10 +116,18 @@ void LightingKernel::shade(SpanPacket& p) {
     if (capture_ && k == 0)
       for (int i = 0; i < count; ++i) captured_[0][i] = float(n_dot_l[i]), captured_[1][i] = float(n_dot_h[i]);
     // No highlight from a light behind the surface (and none where H is undefined).
-    // Hardware looks the power up for every pixel (counted so); the model skips the
-    // call whose result the select would discard.
-    for (int i = 0; i < count; ++i)
-      n_dot_h[i] = n_dot_l[i] > zero && n_dot_h[i] > zero ? pow_op(n_dot_h[i], shininess) : zero;
+    // Hardware looks the power up for every pixel (counted so). In float32 so does the
+    // model, then selects; the other formats skip the power the select would discard.
+    if constexpr (std::is_same_v<T, float>) {  // branch-free: the loop vectorizes
+      for (int i = 0; i < count; ++i) {
+        const bool lit = (n_dot_l[i] > zero) & (n_dot_h[i] > zero);
+        const float power = specular_power(lit ? n_dot_h[i] : 1.0f, shininess);
+        n_dot_h[i] = lit ? power : zero;
+      }
+    } else {
+      for (int i = 0; i < count; ++i)
+        n_dot_h[i] = n_dot_l[i] > zero && n_dot_h[i] > zero ? pow_op(n_dot_h[i], shininess) : zero;
+    }
     if (deferred) {
       for (int c = 0; c < 3; ++c)
         for (int i = 0; i < count; ++i) {

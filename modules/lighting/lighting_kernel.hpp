@@ -6,7 +6,8 @@
 //                                                 + k_s · [N·L > 0] max(0, N·H)^shininess)
 //
 // L and H come from vector_interp where they vary over the frame, else they are the
-// frame's constants. The power is one table look-up in hardware (powf here).
+// frame's constants. The power is one table look-up in hardware; in float32 here it is
+// specular_power (power.hpp), in the reduced formats the exact power rounded once.
 #include <string>
 #include <vector>
 
@@ -21,7 +22,7 @@ class LightingKernel {
   explicit LightingKernel(const core::Scene& scene, core::NumberFormat format = {});
 
   void process(SpanPacket& p);
-  const Ops& ops() const { return ops_; }
+  Ops ops() const;
   uint64_t work(const SpanPacket& p) const { return uint64_t(p.count) * lights_.size(); }
   bool bypass(const SpanPacket&) const { return false; }
   NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events, checks_}; }
@@ -47,7 +48,7 @@ class LightingKernel {
 
   std::vector<Light> lights_;
   float ambient_[3];
-  Ops ops_;
+  PacketTally<2> tally_;  // packets without (0) and with (1) a colour texture
   bool capture_ = false;
   float captured_[2][kSpanMax] = {};
   NumberContext numbers_;

@@ -45,8 +45,15 @@ void NormalizeKernel::process(SpanPacket& p) {
                                  : mode_;
   with_number_type(numbers_, [&](auto zero) { normalize_as<decltype(zero)>(p, mode); });
   nonfinite_ += count_nonfinite(p.n, p.count);
-  ops_ += normalize_ops_per_pixel(mode) * uint64_t(p.count);
-  if (p.count > 0) ops_ += normalize_ops_per_span(mode);
+  tally_.add(mode == mode_ ? 0 : 1, p.count);
+}
+
+Ops NormalizeKernel::ops() const {
+  const NormalizeMode modes[2] = {mode_, NormalizeMode::Exact};
+  Ops o;
+  for (int k = 0; k < 2; ++k)
+    o += normalize_ops_per_pixel(modes[k]) * tally_.pixels[k] + normalize_ops_per_span(modes[k]) * tally_.packets[k];
+  return o;
 }
 
 template <class T>

@@ -138,7 +138,7 @@ class NormalizeKernel {
   // (pipeline.normalize.format).
   explicit NormalizeKernel(NormalizeMode mode, core::NumberFormat format = {}) : mode_(mode), numbers_(format) {}
   void process(SpanPacket& p);
-  const Ops& ops() const { return ops_; }
+  Ops ops() const;
   NormalizeMode mode() const { return mode_; }
   uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }
   bool bypass(const SpanPacket&) const { return false; }
@@ -156,7 +156,7 @@ class NormalizeKernel {
   template <class T> void normalize_as(SpanPacket& p, NormalizeMode mode);
 
   NormalizeMode mode_;
-  Ops ops_;
+  PacketTally<2> tally_;  // packets normalized in mode_ (0), or exactly (1: bump packets)
   NumberContext numbers_;
   uint64_t nonfinite_ = 0;
   bool capture_ = false;

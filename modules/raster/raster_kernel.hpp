@@ -40,7 +40,7 @@ class RasterKernel {
  private:
   int width_, height_;
   std::vector<float> inv_depth_;
-  SpanPacket packet_;
+  SpanPacket packet_{};  // zeroed: the lanes past a packet's count are read (kLanes)
   Ops ops_;
   uint64_t walked_ = 0, hidden_ = 0, row_before_ = 0;
 };
@@ -49,6 +49,21 @@ template <class Emit>
 void RasterKernel::run(const TriangleSetup& t, Emit&& emit) {
   SpanPacket& p = packet_;
   p.tri = &t;
+  // The walk's state in locals (the packet and the depth buffer are memory the compiler
+  // cannot keep in registers across their stores).
+  const float step = t.inv_w.ax, inv_w_min = t.inv_w_min;
+  int count = 0;
+  uint64_t hidden = 0;
+  // Sends the run of visible pixels gathered: w = 1/(1/w) for the whole packet in one
+  // loop (whole groups of lanes, kLanes; the lanes past the count divide what they hold).
+  auto send = [&](int x_after) {  // x_after: one past the run's last pixel
+    p.x0 = x_after - count;
+    for (int i = 0; i < lanes(count); ++i) p.w[i] = 1.0f / p.inv_w[i];
+    ops_ += kOpsPerPixelVisible * uint64_t(count);
+    p.count = count;
+    emit(p);
+    count = 0;
+  };
   for (int y = t.coverage.y0; y <= t.coverage.y1; ++y) {
     const auto [x_begin, x_end] = t.coverage.row_span(y);
     if (x_begin >= x_end) continue;
@@ -56,39 +71,37 @@ void RasterKernel::run(const TriangleSetup& t, Emit&& emit) {
     row_before_ = walked_;
     walked_ += n;
     ops_ += kOpsPerPixelWalked * n + kOpsPerSeed * ((n + kSpanMax - 1) / kSpanMax);
-    float inv_w = 0;
-    float* depth = &inv_depth_[size_t(y) * width_];
+    float* const depth = &inv_depth_[size_t(y) * width_];
     p.y = y;
     p.row_start = x_begin;
-    p.count = 0;
-    for (int x = x_begin; x < x_end; ++x, inv_w += t.inv_w.ax) {
-      static_assert((kSpanMax & (kSpanMax - 1)) == 0, "re-seeding uses a mask");
-      if (((x - x_begin) & (kSpanMax - 1)) == 0) inv_w = t.inv_w.at(x - t.x_ref, y - t.y_ref);
-      const float inv_w_pixel = inv_w > 0 ? inv_w : t.inv_w_min;
-      if (inv_w_pixel > depth[x]) {
-        depth[x] = inv_w_pixel;
-        if (p.count == 0) p.x0 = x;
-        p.inv_w[p.count] = inv_w_pixel;
-        p.w[p.count] = 1.0f / inv_w_pixel;
-        if (++p.count == kSpanMax) {
-          ops_ += kOpsPerPixelVisible * uint64_t(p.count);
-          emit(p);
-          p.count = 0;
+    for (int seed = x_begin; seed < x_end; seed += kSpanMax) {  // re-seeded every kSpanMax pixels
+      float inv_w = t.inv_w.at(seed - t.x_ref, y - t.y_ref);
+      const int end = x_end - seed > kSpanMax ? seed + kSpanMax : x_end;
+      int x = seed;
+      while (x < end) {
+        // Visible pixels join the run, up to a hidden one or a full packet: no call in
+        // this loop, so that its state stays in registers.
+        const int stop = end - x > kSpanMax - count ? x + kSpanMax - count : end;
+        for (; x < stop; ++x, inv_w += step) {
+          const float inv_w_pixel = inv_w > 0 ? inv_w : inv_w_min;
+          if (!(inv_w_pixel > depth[x])) break;
+          depth[x] = inv_w_pixel;
+          p.inv_w[count++] = inv_w_pixel;
         }
-      } else {
-        ++hidden_;
-        if (p.count > 0) {  // a hidden pixel ends the run
-          ops_ += kOpsPerPixelVisible * uint64_t(p.count);
-          emit(p);
-          p.count = 0;
+        if (x < stop) {  // pixel x is hidden: it ends the run, and the hidden ones are passed
+          if (count > 0) send(x);
+          for (; x < end; ++x, inv_w += step, ++hidden) {
+            const float inv_w_pixel = inv_w > 0 ? inv_w : inv_w_min;
+            if (inv_w_pixel > depth[x]) break;
+          }
+        } else if (count == kSpanMax) {
+          send(x);
         }
       }
     }
-    if (p.count > 0) {
-      ops_ += kOpsPerPixelVisible * uint64_t(p.count);
-      emit(p);
-    }
+    if (count > 0) send(x_end);
   }
+  hidden_ += hidden;
 }
 
 }  // namespace modules
