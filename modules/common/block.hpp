@@ -42,7 +42,7 @@ class Schedule {
   explicit Schedule(Timing t) : timing_(t) {}
   // Books II·work cycles for work arriving at `arrival`; returns the cycle its first
   // result reaches the next block.
-  uint64_t occupy(uint64_t arrival, uint64_t work) {
+  [[gnu::always_inline]] uint64_t occupy(uint64_t arrival, uint64_t work) {
     const uint64_t start = std::max(arrival, free_);
     const uint64_t busy = timing_.ii * work;
     free_ = start + busy;
@@ -100,17 +100,20 @@ class BlockInfo {
 };
 
 // Forwards a transaction to `next` (a bound socket's interface; none after the last
-// block) with the delay annotation of `cycle`.
+// block) with the delay annotation of `cycle`: its time relative to `now`, the
+// simulation time (which no blocking call along a packet's way through the blocks
+// advances, so the caller may know it without asking the kernel).
 inline void forward(tlm::tlm_fw_transport_if<>* next, tlm::tlm_generic_payload& trans, uint64_t cycle,
-                    const sc_core::sc_time& period) {
+                    const sc_core::sc_time& period, const sc_core::sc_time& now) {
   if (!next) return;  // the last block
-  const sc_core::sc_time at = period * double(cycle), now = sc_core::sc_time_stamp();
+  const sc_core::sc_time at = period * double(cycle);
   sc_core::sc_time delay = at > now ? at - now : sc_core::SC_ZERO_TIME;
   next->b_transport(trans, delay);
 }
 template <class Socket>
-void forward(Socket& socket, tlm::tlm_generic_payload& trans, uint64_t cycle, const sc_core::sc_time& period) {
-  forward(socket.size() > 0 ? socket.operator->() : nullptr, trans, cycle, period);
+void forward(Socket& socket, tlm::tlm_generic_payload& trans, uint64_t cycle, const sc_core::sc_time& period,
+             const sc_core::sc_time& now) {
+  forward(socket.size() > 0 ? socket.operator->() : nullptr, trans, cycle, period, now);
 }
 
 // A block's packet input: a plain TLM-2.0 target socket bound to the block, which
@@ -165,10 +168,15 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
       if (next_) next_->b_transport(trans, delay);
       return;
     }
-    work(trans, p);
+    work(trans, p, delay);
   }
 
-  [[gnu::noinline]] void work(tlm::tlm_generic_payload& trans, SpanPacket& p) {
+  [[gnu::noinline]] void work(tlm::tlm_generic_payload& trans, SpanPacket& p, const sc_core::sc_time& delay) {
+    // The packet's delay annotation is its arrival cycle's time relative to now: where
+    // it is positive, the delay it leaves with is that plus the cycles it spent here
+    // (no call into the kernel for the time, a packet and block); else the time is
+    // asked for.
+    const uint64_t arrival = p.cycle;
     if (!kTracing || (!tracer_ && !timeline_)) {  // nothing inspected: the fast path
       kernel_.process(p);
       ++stats_.packets;
@@ -187,7 +195,13 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
         timeline_->add(track_, schedule_.last_start(), schedule_.last_busy(), uint32_t(p.count), p.tri->id);
     }
     trans.set_response_status(tlm::TLM_OK_RESPONSE);
-    forward(next_, trans, p.cycle, period_);
+    if (!next_) return;
+    if (delay > sc_core::SC_ZERO_TIME) {  // now = arrival − delay: the new delay follows from the old
+      sc_core::sc_time later = delay + period_ * double(p.cycle - arrival);
+      next_->b_transport(trans, later);
+    } else {
+      forward(next_, trans, p.cycle, period_, sc_core::sc_time_stamp());
+    }
   }
 
   // Pixel i leaves at the packet's first result plus its share of the packet's busy

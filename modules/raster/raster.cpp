@@ -17,7 +17,8 @@ BlockStats Raster::stats() const {
 
 void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
   const TriangleSetup& t = *reinterpret_cast<const TriangleSetup*>(trans.get_data_ptr());
-  const uint64_t arrival = uint64_t((sc_core::sc_time_stamp() + delay) / period_ + 0.5);
+  const sc_core::sc_time now = sc_core::sc_time_stamp();  // the same for every packet of the triangle
+  const uint64_t arrival = uint64_t((now + delay) / period_ + 0.5);
   const uint64_t walked_before = kernel_.pixels_walked();
   const uint64_t start = std::max(arrival, schedule_.free_cycle());
   kernel_.run(t, [&](SpanPacket& p) {
@@ -37,7 +38,7 @@ void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& dela
     span_.set_data_ptr(reinterpret_cast<unsigned char*>(&p));
     span_.set_data_length(sizeof(SpanPacket));
     span_.set_address(uint64_t(p.y) << 32 | uint32_t(p.x0));
-    forward(out, span_, p.cycle, period_);
+    forward(out, span_, p.cycle, period_, now);
   });
   schedule_.occupy(arrival, kernel_.pixels_walked() - walked_before);
   // Setup and raster work per triangle: their tracks keep the triangles of the filter.
