@@ -1,6 +1,7 @@
 #include "modules/vector_interp/vector_interp_kernel.hpp"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "modules/common/vector.hpp"
 
@@ -89,14 +90,15 @@ void VectorInterpKernel::process(SpanPacket& p) {
   for (int k = 0; k < light_count_; ++k)
     nonfinite_ += (in_space || writes_l_[k] ? count_nonfinite(p.l[k], p.count) : 0) +
                   (in_space || writes_h_[k] ? count_nonfinite(p.h[k], p.count) : 0);
-  if (in_space) {
-    ops_ += ops_per_pixel_in_space() * uint64_t(p.count);
-    // Three plane seeds a vector: V and L (affine), or L and H, of every light.
-    if (p.count > 0) ops_ += Ops{/*add*/ 6, /*mul*/ 6} * uint64_t(affine_bump_vectors_ ? light_count_ + 1 : 2 * light_count_);
-  } else {
-    ops_ += ops_per_pixel() * uint64_t(p.count);
-    if (p.count > 0) ops_ += ops_per_span();
-  }
+  tally_.add(in_space ? 1 : 0, p.count);
+}
+
+Ops VectorInterpKernel::ops() const {
+  // In the texture's space, three plane seeds a vector: V and L (affine), or L and H, of
+  // every light.
+  const Ops seeds_in_space = Ops{/*add*/ 6, /*mul*/ 6} * uint64_t(affine_bump_vectors_ ? light_count_ + 1 : 2 * light_count_);
+  return ops_per_pixel() * tally_.pixels[0] + ops_per_span() * tally_.packets[0] +
+         ops_per_pixel_in_space() * tally_.pixels[1] + seeds_in_space * tally_.packets[1];
 }
 
 // The planes are setup's, in float32; their seeds and steps are rounded to the format.
@@ -157,36 +159,60 @@ template <class T>
 void VectorInterpKernel::process_in_world(SpanPacket& p) {
   const TriangleSetup& t = *p.tri;
   const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
-  // Seeds of L/w and V/w at the packet's first pixel.
-  T v_w[3], v_step[3];
-  for (int c = 0; c < 3; ++c) v_w[c] = T(t.v[c].at(dx, dy)), v_step[c] = T(t.v[c].ax);
-  T l_w[kMaxLights][3], l_step[kMaxLights][3];
-  for (const auto& s : lights_)
-    if (s.plane >= 0)
-      for (int c = 0; c < 3; ++c) {
-        const Plane& plane = t.l[s.plane][c];
-        l_w[s.plane][c] = T(plane.at(dx, dy)), l_step[s.plane][c] = T(plane.ax);
-        l_range_.add_span(plane.at(dx, dy), plane.ax, p.count, p.w);
-      }
-
-  for (int i = 0; i < p.count; ++i) {
-    const T w = T(p.w[i]);
-    T view[3] = {T(view_[0]), T(view_[1]), T(view_[2])};
-    if (local_viewer_) {
-      for (int c = 0; c < 3; ++c) view[c] = v_w[c] * w, v_w[c] += v_step[c];
-      normalize3(view);
+  // float32 in whole groups of lanes (kLanes: no scalar tails), the other formats pixel
+  // by pixel.
+  const int count = std::is_same_v<T, float> ? lanes(p.count) : p.count;
+  // A vector over w, stepped along the span from its seed at the packet's first pixel by
+  // the constant increment: a chain of additions, in a loop of its own …
+  auto step_along = [&](const Plane plane[3], T out[3][kSpanMax]) {
+    for (int c = 0; c < 3; ++c) {
+      T a = T(plane[c].at(dx, dy));
+      const T step = T(plane[c].ax);
+      for (int i = 0; i < count; ++i) out[c][i] = a, a += step;
     }
-    for (const auto& s : lights_) {
-      T l[3] = {T(s.direction[0]), T(s.direction[1]), T(s.direction[2])};
-      if (s.plane >= 0) {
-        for (int c = 0; c < 3; ++c) l[c] = l_w[s.plane][c] * w, l_w[s.plane][c] += l_step[s.plane][c];
-        normalize3(l);
-        for (int c = 0; c < 3; ++c) p.l[s.light][c][i] = float(l[c]);
-      }
-      T h[3] = {l[0] + view[0], l[1] + view[1], l[2] + view[2]};
-      normalize3(h);
-      for (int c = 0; c < 3; ++c) p.h[s.light][c][i] = float(h[c]);
+  };
+  // … then ×w and normalized, pixel by pixel: a straight loop, which vectorizes.
+  auto unit_times_w = [&](T v[3][kSpanMax]) {
+    for (int i = 0; i < count; ++i) {
+      const T w = T(p.w[i]);
+      T u[3] = {v[0][i] * w, v[1][i] * w, v[2][i] * w};
+      normalize3(u);
+      v[0][i] = u[0], v[1][i] = u[1], v[2][i] = u[2];
     }
+  };
+  T view[3][kSpanMax];
+  if (local_viewer_) {
+    step_along(t.v, view);
+    unit_times_w(view);
+  } else {
+    for (int c = 0; c < 3; ++c)
+      for (int i = 0; i < count; ++i) view[c][i] = T(view_[c]);
+  }
+  T l_regs[3][kSpanMax], h_regs[3][kSpanMax];  // other formats: the format's registers
+  for (const auto& s : lights_) {
+    // float32 writes the packet's wires straight.
+    T(*l)[kSpanMax] = l_regs;
+    T(*h)[kSpanMax] = h_regs;
+    if constexpr (std::is_same_v<T, float>) l = p.l[s.light], h = p.h[s.light];
+    if (s.plane >= 0) {
+      for (int c = 0; c < 3; ++c) l_range_.add_span(t.l[s.plane][c].at(dx, dy), t.l[s.plane][c].ax, p.count, p.w);
+      step_along(t.l[s.plane], l);
+      unit_times_w(l);
+    } else {
+      for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < count; ++i) l[c][i] = T(s.direction[c]);
+    }
+    for (int i = 0; i < count; ++i) {  // H = normalize(L̂ + V̂)
+      T u[3] = {l[0][i] + view[0][i], l[1][i] + view[1][i], l[2][i] + view[2][i]};
+      normalize3(u);
+      h[0][i] = u[0], h[1][i] = u[1], h[2][i] = u[2];
+    }
+    if constexpr (!std::is_same_v<T, float>)
+      for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < count; ++i) {
+          if (s.plane >= 0) p.l[s.light][c][i] = float(l[c][i]);
+          p.h[s.light][c][i] = float(h[c][i]);
+        }
   }
 }
 

@@ -31,7 +31,7 @@ class VectorInterpKernel {
   static bool needed(const core::Scene& scene);
 
   void process(SpanPacket& p);
-  const Ops& ops() const { return ops_; }
+  Ops ops() const;
   uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }  // pixels
   bool bypass(const SpanPacket& p) const { return !world_ && !core::fetches_normal(p.tri->material->path); }
   Ranges ranges() const { return {{"l", l_range_}, {"h", h_range_}}; }
@@ -62,7 +62,7 @@ class VectorInterpKernel {
   bool local_viewer_;
   ValueRange l_range_, h_range_;  // interpolated, before normalization
   float view_[3];  // unit V of a viewer at infinity
-  Ops ops_;
+  PacketTally<2> tally_;  // packets in the world (0) and in the texture's space (1)
   NumberContext numbers_;
   uint64_t nonfinite_ = 0;
   bool writes_l_[kMaxLights] = {}, writes_h_[kMaxLights] = {};  // in the world: the lights' L and H it writes
