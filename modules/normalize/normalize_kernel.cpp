@@ -60,8 +60,8 @@ template <class T>
 void NormalizeKernel::normalize_as(SpanPacket& p, NormalizeMode mode) {
   const TriangleSetup& t = *p.tri;
   const T dh[3] = {T(t.n[0].ax), T(t.n[1].ax), T(t.n[2].ax)};
-  if constexpr (std::is_same_v<T, float>) {  // in place
-    normalize_span(p.n[0], p.n[1], p.n[2], p.count, dh, T(t.c), mode);
+  if constexpr (std::is_same_v<T, float>) {  // in place, in whole groups of lanes (kLanes)
+    normalize_span(p.n[0], p.n[1], p.n[2], lanes(p.count), dh, T(t.c), mode);
   } else {  // the packet's float32 wires rounded to the format, and back
     T n[3][kSpanMax];
     for (int c = 0; c < 3; ++c)

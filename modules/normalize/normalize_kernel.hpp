@@ -105,17 +105,21 @@ void normalize_pixels(T* nx, T* ny, T* nz, int count) {
   }
 }
 
-// Normalizes the `count` normals of a span whose normals step by dh (ΔN_H) from one
-// pixel to the next; c = 2|ΔN_H|².
+// Normalizes the `count` (≤ kSpanMax) normals of a span whose normals step by dh (ΔN_H)
+// from one pixel to the next; c = 2|ΔN_H|².
 template <class T>
 void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, NormalizeMode mode) {
   if (mode == NormalizeMode::ForwardDifference) {
     if (count == 0) return;
     const T n0[3] = {nx[0], ny[0], nz[0]};
+    // The radicands first (a chain of additions), then the scaling in a straight loop
+    // of its own, which vectorizes.
     RadicandSequence<T> radicands(n0, dh, c);
+    T r[kSpanMax];
+    for (int i = 0; i < count; ++i) r[i] = radicands.next();
     for (int i = 0; i < count; ++i) {
       T n[3] = {nx[i], ny[i], nz[i]};
-      scale_by_rsqrt(n, radicands.next(), mode);
+      scale_by_rsqrt(n, r[i], mode);
       nx[i] = n[0], ny[i] = n[1], nz[i] = n[2];
     }
     return;
