@@ -73,13 +73,10 @@ count "golden/texture-object at 960x720 (texel_project)" "$root/golden/texture-o
 count "golden/parallax-steps at 960x720 (refined map)" "$root/golden/parallax-steps/scene.json" "[960,720]"
 
 echo
-echo "== each block's share of the run time (callgrind, inclusive, SystemC, benchmark scene at 480x270) =="
+echo "== each block's share of the run time (callgrind, self costs by block, SystemC, benchmark scene at 480x270) =="
 valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.share" --toggle-collect="${render_fn[systemc]}" \
   "$bin" render "$scene" -o "$tmp/f.exr" --set 'camera.resolution=[480,270]' >/dev/null 2>&1
-callgrind_annotate --inclusive=yes --threshold=100 "$tmp/cg.share" 2>/dev/null |
-  grep -E 'Kernel::(process|run)|Raster::b_transport|Setup::run' | grep -v '::{lambda' |
-  sed -E 's/^ *[0-9,]+ \( *([0-9.]+)%\).*modules::([A-Za-z]+)::.*/  \2 \1 %/' | sort -t' ' -k2 -u
-echo "  (inclusive: raster's b_transport contains the blocks after it, which it calls)"
+callgrind_annotate --threshold=100 "$tmp/cg.share" 2>/dev/null | python3 "$root/scripts/block-share.py"
 
 echo
 echo "== every block elaborated / only the ones the scene needs (golden/sphere at 960x720, instructions) =="
