@@ -4,11 +4,14 @@ SystemC pipeline, each run against the golden model; one CSV row per run.
 
   scripts/sweep.py SHADETLM ROOT [--shard I/N] [--list] > rows.csv
 
-Block families and their axes (parallax joins when its block exists):
-  normal   normal_interp.mode × normalize.mode        golden Phong scenes
-  bump     material path × bump_fetch.filter          scenes/bump/*.json
-  texture  material path × texture_fetch.filter        golden texture scenes
-  number_format is an axis of every family (float32 is the one format so far).
+Block families and their axes:
+  normal    normal_interp.mode × normalize.mode        golden Phong scenes
+  bump      material path × bump_fetch.filter          scenes/bump/*.json
+  texture   material path × texture_fetch.filter        golden texture scenes
+  parallax  tracer (method, map) × max_iterations       golden/parallax-steps
+  number_format is an axis of every family, float32 here: the reduced formats keep the
+  cycles and cost the model emulation time, so their error is measured against the
+  float32 frame by scripts/format-report.sh instead.
 --shard I/N runs the runs whose index is I modulo N (independent jobs: xargs -P here,
 a Slurm job array on a cluster). A progress bar goes to stderr when it is a terminal."""
 import csv
@@ -54,6 +57,16 @@ def plan():
                 if filt:
                     sets["pipeline.texture_fetch.filter"] = filt
                 runs.append(("texture", scene, sets))
+    # The parallax tracers: the refined distance map (the default), Donnelly's map, cone
+    # stepping, and the layered searches, each at three iteration caps.
+    tracers = [{}, {"parallax.method": "distance", "parallax.map": "donnelly"}] + [
+        {"parallax.method": m} for m in ["cone", "relief", "pom", "steep", "offset"]]
+    for tracer in tracers:
+        for cap in [256] if tracer.get("parallax.method") == "offset" else [16, 64, 256]:  # offset: no loop
+            for fmt in FORMATS:
+                sets = {"materials.carved.%s" % k: v for k, v in tracer.items()}
+                sets.update({"materials.carved.parallax.max_iterations": cap, "pipeline.number_format": fmt})
+                runs.append(("parallax", "golden/parallax-steps/scene.json", sets))
     return runs
 
 
