@@ -27,6 +27,8 @@ inline void route_systemc_reports_to_failures() {
 struct Driver : sc_core::sc_module {
   tlm_utils::simple_initiator_socket<Driver> out;
   std::function<void(std::function<void(modules::SpanPacket&)>)> produce;  // calls send per packet
+  // The delay annotation a packet is sent with (none: zero).
+  std::function<sc_core::sc_time(const modules::SpanPacket&)> delay_of;
   SC_HAS_PROCESS(Driver);
   explicit Driver(sc_core::sc_module_name n) : sc_core::sc_module(n), out("out") { SC_THREAD(run); }
   void run() {
@@ -35,7 +37,7 @@ struct Driver : sc_core::sc_module {
     produce([&](modules::SpanPacket& p) {
       trans.set_data_ptr(reinterpret_cast<unsigned char*>(&p));
       trans.set_data_length(sizeof p);
-      sc_core::sc_time delay = sc_core::SC_ZERO_TIME;
+      sc_core::sc_time delay = delay_of ? delay_of(p) : sc_core::SC_ZERO_TIME;
       out->b_transport(trans, delay);
       REQUIRE(trans.get_response_status() == tlm::TLM_OK_RESPONSE);
     });
@@ -45,27 +47,36 @@ struct Driver : sc_core::sc_module {
 struct Sink : sc_core::sc_module {
   tlm_utils::simple_target_socket<Sink> in;
   std::function<void(const modules::SpanPacket&)> check;
+  std::function<void(const modules::SpanPacket&, const sc_core::sc_time&)> check_delay;  // optional
   uint64_t packets = 0;
   explicit Sink(sc_core::sc_module_name n) : sc_core::sc_module(n), in("in") {
     in.register_b_transport(this, &Sink::transport);
   }
-  void transport(tlm::tlm_generic_payload& trans, sc_core::sc_time&) {
+  void transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
     ++packets;
-    check(*reinterpret_cast<const modules::SpanPacket*>(trans.get_data_ptr()));
+    const auto& p = *reinterpret_cast<const modules::SpanPacket*>(trans.get_data_ptr());
+    check(p);
+    if (check_delay) check_delay(p, delay);
     trans.set_response_status(tlm::TLM_OK_RESPONSE);
   }
 };
 
-// Runs packets through Stage<Kernel>: driver → block → sink.
+// Runs packets through Stage<Kernel>: driver → block → sink. Optionally, the delay each
+// packet is sent with, and a check of the delay the block forwards it with.
 template <class Kernel>
 uint64_t run_stage(Kernel& kernel, std::function<void(std::function<void(modules::SpanPacket&)>)> produce,
-                   std::function<void(const modules::SpanPacket&)> check) {
+                   std::function<void(const modules::SpanPacket&)> check,
+                   std::function<sc_core::sc_time(const modules::SpanPacket&)> delay_of = {},
+                   std::function<void(const modules::SpanPacket&, const sc_core::sc_time&)> check_delay = {},
+                   modules::Timing timing = {}, sc_core::sc_time period = sc_core::sc_time(2, sc_core::SC_NS)) {
   route_systemc_reports_to_failures();
   Driver driver("driver");
-  modules::Stage<Kernel> block("block", kernel, modules::Timing{}, sc_core::sc_time(2, sc_core::SC_NS));
+  modules::Stage<Kernel> block("block", kernel, timing, period);
   Sink sink("sink");
   driver.produce = std::move(produce);
+  driver.delay_of = std::move(delay_of);
   sink.check = std::move(check);
+  sink.check_delay = std::move(check_delay);
   driver.out.bind(block.in);
   block.out.bind(sink.in);
   sc_core::sc_start();

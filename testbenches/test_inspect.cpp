@@ -3,10 +3,12 @@
 // per packet. Each test case runs one simulation (one per process).
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
+#include "modules/normalize/normalize_kernel.hpp"
 #include "modules/pipeline/pipeline.hpp"
 #include "systemc_harness.hpp"
 #include "test_util.hpp"
@@ -160,4 +162,47 @@ TEST_CASE("every traced record reaches the VCD, also when the replay idles", "[i
       CHECK(e.at("args").at("triangle").get<uint32_t>() >= 1300);
       CHECK(e.at("args").at("triangle").get<uint32_t>() <= 1400);
     }
+}
+
+TEST_CASE("a block forwards each packet with its cycle's time relative to now, whatever delay it came with",
+          "[timing][systemc]") {
+  // The delay annotation is the packet's cycle relative to the simulation time (zero
+  // once that time has passed). A block derives the delay it forwards from the one it
+  // got, and asks for the time only when that was zero: both ways are driven here, the
+  // driver letting time move past some packets' cycles.
+  modules::NormalizeKernel kernel(modules::NormalizeMode::Exact);
+  const sc_core::sc_time period(2, sc_core::SC_NS);
+  auto relative = [&](uint64_t cycle) {
+    const sc_core::sc_time at = period * double(cycle), now = sc_core::sc_time_stamp();
+    return at > now ? at - now : sc_core::SC_ZERO_TIME;
+  };
+  modules::TriangleSetup tri;
+  modules::SpanPacket packet{};
+  std::mt19937 rng(7);
+  uint64_t derived = 0, asked = 0;
+  auto produce = [&](std::function<void(modules::SpanPacket&)> send) {
+    uint64_t cycle = 0;
+    for (int k = 0; k < 400; ++k) {
+      packet.tri = &tri;
+      packet.count = 1 + k % modules::kSpanMax;
+      for (int i = 0; i < packet.count; ++i) packet.n[0][i] = 0, packet.n[1][i] = 0, packet.n[2][i] = 1;
+      cycle += rng() % 50;
+      packet.cycle = cycle;
+      if (k % 3 == 0) sc_core::wait(period * double(rng() % 150));  // about as fast as the cycles: ahead, then behind
+      (relative(packet.cycle) > sc_core::SC_ZERO_TIME ? derived : asked) += 1;
+      send(packet);
+    }
+  };
+  uint64_t forwarded = 0;
+  auto check_delay = [&](const modules::SpanPacket& p, const sc_core::sc_time& delay) {
+    REQUIRE(delay == relative(p.cycle));
+    ++forwarded;
+  };
+  CHECK(test::run_stage(kernel, produce, [](const modules::SpanPacket&) {},
+                        [&](const modules::SpanPacket& p) { return relative(p.cycle); }, check_delay,
+                        modules::Timing{7, 3}, period) == 400);
+  CHECK(forwarded == 400);
+  INFO("arrived with a delay: " << derived << ", with none: " << asked);
+  CHECK(derived > 50);
+  CHECK(asked > 10);
 }

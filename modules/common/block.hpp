@@ -8,7 +8,7 @@
 // at max(t, the cycle the block becomes free), keeps it busy II·work cycles, and
 // reaches the next block L cycles after it started. Arrival cycles travel in the
 // packet; the b_transport delay annotation carries the same time relative to the
-// initiator's local time (loosely timed, no wait() per pixel).
+// simulation time, zero once that has passed (loosely timed, no wait() per pixel).
 #include <algorithm>
 #include <cstdint>
 #include <string>

@@ -190,10 +190,14 @@ void VectorInterpKernel::process_in_world(SpanPacket& p) {
   }
   T l_regs[3][kSpanMax], h_regs[3][kSpanMax];  // other formats: the format's registers
   for (const auto& s : lights_) {
-    // float32 writes the packet's wires straight.
+    // float32 writes the packet's wires straight: H, and L of a point light (a
+    // directional light's L stays a constant, in a register).
     T(*l)[kSpanMax] = l_regs;
     T(*h)[kSpanMax] = h_regs;
-    if constexpr (std::is_same_v<T, float>) l = p.l[s.light], h = p.h[s.light];
+    if constexpr (std::is_same_v<T, float>) {
+      h = p.h[s.light];
+      if (s.plane >= 0) l = p.l[s.light];
+    }
     if (s.plane >= 0) {
       for (int c = 0; c < 3; ++c) l_range_.add_span(t.l[s.plane][c].at(dx, dy), t.l[s.plane][c].ax, p.count, p.w);
       step_along(t.l[s.plane], l);
