@@ -19,8 +19,8 @@ double plane_distance(const glm::dvec4& p, int plane) {
 }
 
 int64_t floor_div(int64_t a, int64_t b) {  // b > 0
-  int64_t q = a / b;
-  return (a % b != 0 && a < 0) ? q - 1 : q;
+  const int64_t q = a / b;   // rounded towards zero
+  return q - (a - q * b < 0);  // one less where a < 0 left a remainder
 }
 int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
 }  // namespace
@@ -34,10 +34,14 @@ ClipPolygon clip_triangle(const glm::dvec4& c0, const glm::dvec4& c1, const glm:
   poly.vertices[1] = {c1, {0, 1, 0}};
   poly.vertices[2] = {c2, {0, 0, 1}};
   poly.count = 3;
-  // Most triangles are inside every plane: nothing to cut.
+  // Most triangles are inside every plane: nothing to cut. The six distances of
+  // plane_distance, written out (no switch per vertex and plane).
   bool inside = true;
-  for (int plane = 0; plane < 6 && inside; ++plane)
-    for (const glm::dvec4* c : {&c0, &c1, &c2}) inside = inside && plane_distance(*c, plane) >= 0;
+  for (const glm::dvec4* c : {&c0, &c1, &c2}) {
+    const double band = kGuardBand * c->w;
+    inside &= (c->z + c->w >= 0) & (c->w - c->z >= 0) & (band - c->x >= 0) & (band + c->x >= 0) &
+              (band - c->y >= 0) & (band + c->y >= 0);
+  }
   if (inside) return poly;
   ClipPolygon next;
   for (int plane = 0; plane < 6 && !poly.empty(); ++plane) {
@@ -84,21 +88,15 @@ bool SnappedTriangle::covers(int px, int py) const {
 }
 
 std::pair<int, int> SnappedTriangle::row_span(int py) const {
-  // Each edge function is linear in px along the row: alpha·px + beta ≥ bias.
   int64_t lo = x0, hi = x1;
-  for (int k = 0; k < 3 && lo <= hi; ++k) {
-    const int n = (k + 1) % 3;
-    const int64_t dx = x[n] - x[k], dy = y[n] - y[k];
-    const int64_t cy = int64_t(py) * kSubpixelScale + kSubpixelScale / 2;
-    const int64_t alpha = -dy * kSubpixelScale;
-    const int64_t beta = dx * (cy - y[k]) - dy * (kSubpixelScale / 2 - x[k]);
-    const int64_t need = top_left(k) ? 0 : 1;  // alpha·px + beta ≥ need
-    if (alpha > 0)
-      lo = std::max(lo, ceil_div(need - beta, alpha));
-    else if (alpha < 0)
-      hi = std::min(hi, floor_div(beta - need, -alpha));
-    else if (beta < need)
-      hi = lo - 1;
+  for (const RowTest& e : row_tests_) {
+    const int64_t t = e.step * py + e.offset;  // the edge passes pixel px when slope·px + t ≥ 0
+    if (e.slope > 0)
+      lo = std::max(lo, -floor_div(t, e.slope));  // px ≥ ⌈−t / slope⌉
+    else if (e.slope < 0)
+      hi = std::min(hi, floor_div(t, -e.slope));  // px ≤ ⌊t / −slope⌋
+    else if (t < 0)
+      return {x0, x0};  // parallel to the row, and the row is outside it
   }
   if (lo > hi) return {x0, x0};
   return {int(lo), int(hi) + 1};
@@ -108,8 +106,8 @@ bool snap_triangle(const glm::dvec2& s0, const glm::dvec2& s1, const glm::dvec2&
                    int height, SnappedTriangle& t) {
   const glm::dvec2 s[3] = {s0, s1, s2};
   for (int k = 0; k < 3; ++k) {
-    t.x[k] = std::llround(s[k].x * kSubpixelScale);
-    t.y[k] = std::llround(s[k].y * kSubpixelScale);
+    t.x[k] = round_half_away(s[k].x * kSubpixelScale);
+    t.y[k] = round_half_away(s[k].y * kSubpixelScale);
     t.source[k] = k;
   }
   const int64_t area2 = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.x[2] - t.x[0]) * (t.y[1] - t.y[0]);
@@ -129,7 +127,17 @@ bool snap_triangle(const glm::dvec2& s0, const glm::dvec2& s1, const glm::dvec2&
   t.y0 = int(std::max<int64_t>(0, ceil_div(mny - half, kSubpixelScale)));
   t.x1 = int(std::min<int64_t>(width - 1, floor_div(mxx - half, kSubpixelScale)));
   t.y1 = int(std::min<int64_t>(height - 1, floor_div(mxy - half, kSubpixelScale)));
-  return t.x0 <= t.x1 && t.y0 <= t.y1;
+  if (!(t.x0 <= t.x1 && t.y0 <= t.y1)) return false;
+  // Edge function k at the centre (cx, cy) of pixel (px, py), cx = 256·px + ½·256:
+  //   (x[n] − x[k])(cy − y[k]) − (y[n] − y[k])(cx − x[k]) ≥ need,
+  // need = 0 on a top or left edge, 1 elsewhere, linear in px and py.
+  for (int k = 0; k < 3; ++k) {
+    const int n = (k + 1) % 3;
+    const int64_t dx = t.x[n] - t.x[k], dy = t.y[n] - t.y[k];
+    t.row_tests_[k] = {-dy * kSubpixelScale, dx * kSubpixelScale,
+                       dx * (half - t.y[k]) - dy * (half - t.x[k]) - (t.top_left(k) ? 0 : 1)};
+  }
+  return true;
 }
 
 }  // namespace core

@@ -12,6 +12,7 @@
 //    edge (the top-left fill rule), so that triangles sharing an edge cover each pixel
 //    along it exactly once.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -61,12 +62,29 @@ struct SnappedTriangle {
   std::pair<int, int> row_span(int py) const;
 
  private:
+  friend bool snap_triangle(const glm::dvec2&, const glm::dvec2&, const glm::dvec2&, int, int, SnappedTriangle&);
+  // Edge k's test along a row, from its edge function and fill rule, set by
+  // snap_triangle so that row_span does one multiply-add and one division per edge:
+  // pixel px of row py passes when slope·px + step·py + offset ≥ 0.
+  struct RowTest {
+    int64_t slope, step, offset;
+  };
+  std::array<RowTest, 3> row_tests_;
   bool top_left(int k) const {
     const int n = (k + 1) % 3;
     const int64_t dx = x[n] - x[k], dy = y[n] - y[k];
     return dy < 0 || (dy == 0 && dx > 0);  // left edge, or horizontal top edge
   }
 };
+
+// v rounded to the nearest integer, halves away from zero: std::llround, without its
+// call where |v| < 2⁶² (snapping rounds six coordinates per triangle).
+inline int64_t round_half_away(double v) {
+  if (!(std::fabs(v) < 0x1p62)) return std::llround(v);  // also NaN and infinities
+  const int64_t truncated = int64_t(v);
+  const double fraction = v - double(truncated);  // exact: v and its truncation share their leading bits
+  return truncated + (fraction >= 0.5) - (fraction <= -0.5);
+}
 
 // Snaps a screen-space triangle (pixels) for a width × height viewport. Returns false
 // when the snapped triangle has zero area or covers no pixel centre of the viewport's

@@ -179,3 +179,43 @@ TEST_CASE("clipping keeps the triangle's geometry and its barycentric weights", 
   // Non-finite input: nothing.
   CHECK(core::clip_triangle({0, 0, 0, 1}, {NAN, 0, 0, 1}, {0, 1, 0, 1}).empty());
 }
+
+TEST_CASE("a triangle across any one clipping plane is cut by it", "[coverage]") {
+  // One vertex past one plane at a time (the others inside every plane): the early
+  // accept must see each plane, and the cut leaves a quad inside all six.
+  const glm::dvec4 past[6] = {{0.5, 0, -2, 1}, {0.5, 0, 2, 1}, {9, 0, 0, 1},
+                              {-9, 0, 0, 1},   {0.5, 9, 0, 1}, {0.5, -9, 0, 1}};
+  for (int plane = 0; plane < 6; ++plane) {
+    INFO("plane " << plane);
+    const auto poly = core::clip_triangle({0, 0, 0, 1}, past[plane], {0, 0.5, 0, 1});
+    CHECK(poly.size() == 4);
+    for (const auto& v : poly) {
+      const glm::dvec4 c = v.clip;
+      const double band = core::kGuardBand * c.w;
+      CHECK(c.z + c.w >= -1e-12);
+      CHECK(c.w - c.z >= -1e-12);
+      CHECK(std::abs(c.x) <= band + 1e-12);
+      CHECK(std::abs(c.y) <= band + 1e-12);
+    }
+  }
+}
+
+TEST_CASE("snapping's rounding is std::llround's", "[coverage]") {
+  // Halves (both signs, where the two directions differ), their neighbours one ulp
+  // away, values past 2⁵² (already integers) and past 2⁶² (llround's own path).
+  std::vector<double> values = {0.0, -0.0, 0.5, -0.5, 1.5, -1.5, 2.5, -2.5, 0x1p52 + 1, -0x1p53, 0x1p62, -0x1p62 - 4096.0};
+  for (double h : {0.5, -0.5, 1.5, -1.5, 1e6 + 0.5, -1e6 - 0.5, 0x1p51 + 0.5, -0x1p51 - 0.5}) {
+    values.push_back(std::nextafter(h, 0.0));
+    values.push_back(std::nextafter(h, h * 2));
+  }
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> screen(-8.0 * 4096 * 256, 8.0 * 4096 * 256);
+  for (int i = 0; i < 100000; ++i) {
+    values.push_back(screen(rng));
+    values.push_back(std::round(screen(rng)) + 0.5);  // exact halves
+  }
+  for (double v : values) {
+    INFO(std::hexfloat << v);
+    CHECK(core::round_half_away(v) == std::llround(v));
+  }
+}
