@@ -1,7 +1,9 @@
 // shadetlm bench [SCENE] [--set key=value ...]: the SystemC pipeline against the same
 // kernels in a plain loop, measured in one run (these machines are noisy): a warm-up
 // loop (discarded: first touches of memory), loop, SystemC, loop; the ratio is
-// SystemC's time over the two loops' mean.
+// SystemC's time over the two loops' mean. One SystemC run a process: SystemC cannot
+// elaborate a second pipeline once a simulation has run (E529), so scripts/bench.sh
+// takes the median of several processes.
 #include <iostream>
 
 #include "app/commands.hpp"
