@@ -34,14 +34,11 @@ ClipPolygon clip_triangle(const glm::dvec4& c0, const glm::dvec4& c1, const glm:
   poly.vertices[1] = {c1, {0, 1, 0}};
   poly.vertices[2] = {c2, {0, 0, 1}};
   poly.count = 3;
-  // Most triangles are inside every plane: nothing to cut. The six distances of
-  // plane_distance, written out (no switch per vertex and plane).
+  // Most triangles are inside every plane: nothing to cut. (Every test is made, with no
+  // early exit: the compiler unrolls the loops and folds plane_distance's switch away.)
   bool inside = true;
-  for (const glm::dvec4* c : {&c0, &c1, &c2}) {
-    const double band = kGuardBand * c->w;
-    inside &= (c->z + c->w >= 0) & (c->w - c->z >= 0) & (band - c->x >= 0) & (band + c->x >= 0) &
-              (band - c->y >= 0) & (band + c->y >= 0);
-  }
+  for (const glm::dvec4* c : {&c0, &c1, &c2})
+    for (int plane = 0; plane < 6; ++plane) inside &= plane_distance(*c, plane) >= 0;
   if (inside) return poly;
   ClipPolygon next;
   for (int plane = 0; plane < 6 && !poly.empty(); ++plane) {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 namespace modules {
@@ -34,9 +33,7 @@ namespace {
 uint32_t copy_counting_nonfinite(float* __restrict dst, const float* __restrict src, int n) {
   uint32_t bad = 0;
   for (int i = 0; i < n; ++i) {
-    uint32_t bits;
-    std::memcpy(&bits, &src[i], sizeof bits);
-    bad += (bits & 0x7f800000u) == 0x7f800000u;
+    bad += is_nonfinite(src[i]);
     dst[i] = src[i];
   }
   return bad;

@@ -64,7 +64,9 @@ void RasterKernel::run(const TriangleSetup& t, Emit&& emit) {
     emit(p);
     count = 0;
   };
-  for (int y = t.coverage.y0; y <= t.coverage.y1; ++y) {
+  // From setup's reference row, the top covered one (packet.hpp): the rows above it are
+  // empty, and setup has already found so.
+  for (int y = t.y_ref; y <= t.coverage.y1; ++y) {
     const auto [x_begin, x_end] = t.coverage.row_span(y);
     if (x_begin >= x_end) continue;
     const uint64_t n = uint64_t(x_end - x_begin);
