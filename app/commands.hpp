@@ -33,8 +33,10 @@ struct SceneOptions {
   std::string scene;                 // empty: the built-in demo
   std::vector<std::string> overrides;  // --set key=value
   void add_to(CLI::App& cmd);
-  core::Scene load() const;
+  core::Scene load() const;  // and its pipeline settings checked
 };
+// The scene's pipeline settings, resolved against the standard pipeline's declaration.
+core::Settings settings_of(const core::Scene& scene);
 
 // Stamps the header attributes (version, scene, resolved configuration, renderer).
 void describe(core::Frame& frame, const core::Scene& scene, const SceneOptions& options,

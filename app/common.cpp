@@ -3,6 +3,7 @@
 #include "app/commands.hpp"
 #include "core/input_error.hpp"
 #include "core/version.hpp"
+#include "modules/pipeline/pipeline.hpp"
 
 namespace app {
 
@@ -14,7 +15,13 @@ void SceneOptions::add_to(CLI::App& cmd) {
 }
 
 core::Scene SceneOptions::load() const {
-  return scene.empty() ? core::load_demo_scene(overrides) : core::load_scene(scene, overrides);
+  core::Scene s = scene.empty() ? core::load_demo_scene(overrides) : core::load_scene(scene, overrides);
+  settings_of(s);  // bad pipeline settings stop every command, not only render
+  return s;
+}
+
+core::Settings settings_of(const core::Scene& scene) {
+  return scene.pipeline.resolve(modules::standard_pipeline().all_settings());
 }
 
 void describe(core::Frame& frame, const core::Scene& scene, const SceneOptions& options,
@@ -25,7 +32,7 @@ void describe(core::Frame& frame, const core::Scene& scene, const SceneOptions& 
   // Command-line text need not be UTF-8: replace what is not, rather than fail after
   // the render.
   const auto replace = nlohmann::json::error_handler_t::replace;
-  frame.attributes["shadetlm:config"] = scene.pipeline.resolved().dump(-1, ' ', false, replace);
+  frame.attributes["shadetlm:config"] = settings_of(scene).resolved().dump(-1, ' ', false, replace);
   frame.attributes["shadetlm:overrides"] = nlohmann::json(options.overrides).dump(-1, ' ', false, replace);
 }
 

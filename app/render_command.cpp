@@ -177,7 +177,7 @@ Command add_render_command(CLI::App& app) {
             bar.done();
             nlohmann::json stats = r.stats_json();
             stats["scene"] = scene.file;
-            stats["config"] = scene.pipeline.resolved();
+            stats["config"] = settings_of(scene).resolved();
             double reference_s = 0;
             if (opt->compare) stats["error"] = error_against_reference(r.frame, scene, &reference_s);
             describe(r.frame, scene, opt->scene, opt->engine == "loop" ? "pipeline-loop" : "pipeline");

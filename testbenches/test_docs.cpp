@@ -2,7 +2,6 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/pipeline_config.hpp"
 #include "test_util.hpp"
 
 TEST_CASE("every pipeline setting appears in docs/configuration.md", "[docs]") {
@@ -10,7 +9,7 @@ TEST_CASE("every pipeline setting appears in docs/configuration.md", "[docs]") {
   REQUIRE(in);
   std::stringstream ss;
   ss << in.rdbuf();
-  for (const auto& s : core::pipeline_settings()) {
+  for (const auto& s : modules::standard_pipeline().all_settings()) {
     INFO(s.key);
     CHECK_THAT(ss.str(), Catch::Contains("`pipeline." + s.key + "`"));
   }

@@ -75,7 +75,7 @@ void check_regression(const core::Frame& frame, const core::Scene& scene, const 
   if (!pass && regenerate()) {
     core::Frame out = frame;
     out.attributes["shadetlm:scene"] = scene_file;
-    out.attributes["shadetlm:config"] = scene.pipeline.resolved().dump();
+    out.attributes["shadetlm:config"] = test::settings(scene).resolved().dump();
     core::write_exr(accepted, out);
     WARN("REGEN_GOLDEN: rewrote " << accepted << " (was: " << verdict << ")");
     return;

@@ -180,8 +180,8 @@ TEST_CASE("number format names: parsed, printed, and bad ones refused naming the
             .find("pipeline.number_format") != std::string::npos);
   const core::Scene s =
       core::load_scene_text(scene, "ok.json", ".", {"pipeline.number_format=float16", "pipeline.lighting.format=fixed:2.14"});
-  CHECK(s.pipeline.format("normalize").name() == "float16");  // default: number_format
-  CHECK(s.pipeline.format("lighting").name() == "fixed:2.14");
+  CHECK(test::settings(s).format("normalize").name() == "float16");  // default: number_format
+  CHECK(test::settings(s).format("lighting").name() == "fixed:2.14");
 }
 
 TEST_CASE("a wide fixed-point format runs the same algorithms as float32, a narrow one shows its error", "[numbers]") {

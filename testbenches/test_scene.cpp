@@ -35,8 +35,8 @@ TEST_CASE("the minimal scene loads with documented defaults", "[scene]") {
   REQUIRE(s.objects.size() == 1);
   CHECK(s.objects[0].mesh.triangles.size() > 0);
   CHECK(s.materials[s.objects[0].material].path == core::ShadingPath::Phong);
-  CHECK(s.pipeline.string("normalize.mode") == "exact");
-  CHECK(s.pipeline.number("clock_mhz") == 500);
+  CHECK(test::settings(s).string("normalize.mode") == "exact");
+  CHECK(test::settings(s).number("clock_mhz") == 500);
 }
 
 TEST_CASE("every scene in scenes/ and golden/ loads", "[scene]") {
@@ -84,8 +84,8 @@ TEST_CASE("a full scene reads every section", "[scene]") {
   glm::dvec4 p = s.objects[1].model * glm::dvec4(1, 0, 0, 1);
   CHECK(p.x == Approx(1.0));
   CHECK(p.z == Approx(-2.0));
-  CHECK(s.pipeline.string("normalize.mode") == "rsqrt1");
-  CHECK(s.pipeline.string("normal_interp.mode") == "affine");
+  CHECK(test::settings(s).string("normalize.mode") == "rsqrt1");
+  CHECK(test::settings(s).string("normal_interp.mode") == "affine");
 }
 
 TEST_CASE("overrides (--set) change any field, creating sections as needed", "[scene]") {
@@ -94,7 +94,7 @@ TEST_CASE("overrides (--set) change any field, creating sections as needed", "[s
       {"lights.0.intensity=2.5", "pipeline.normalize.mode=forward-difference", "camera.resolution=[32,16]",
        "camera.local_viewer=false"});
   CHECK(s.lights[0].intensity == 2.5);
-  CHECK(s.pipeline.string("normalize.mode") == "forward-difference");
+  CHECK(test::settings(s).string("normalize.mode") == "forward-difference");
   CHECK(s.camera.width == 32);
   CHECK(!s.camera.local_viewer);
   CHECK(s.source["lights"][0]["intensity"] == 2.5);

@@ -75,7 +75,7 @@ TEST_CASE("the stats list the blocks elaborated; elaborate = all adds the others
   std::vector<std::string> names;
   for (const auto& n : needed.stats_json()["elaborated"]) names.push_back(n.get<std::string>());
   CHECK(names == std::vector<std::string>{"setup", "raster", "normal_interp", "normalize", "lighting", "framebuffer"});
-  CHECK(all.stats_json()["elaborated"].size() == modules::block_names().size());
+  CHECK(all.stats_json()["elaborated"].size() == modules::standard_pipeline().block_names().size());
   // The extra blocks let Phong packets pass: no operations, the same frame.
   for (const char* b : {"bump_fetch", "bump_perturb", "vector_interp", "texture_fetch", "texel_project"}) {
     INFO(b);

@@ -7,6 +7,7 @@
 
 #include "core/compare.hpp"
 #include "modules/pipeline/pipeline.hpp"
+#include "modules/texel_project/texel_project_kernel.hpp"
 #include "reference/reference.hpp"
 #include "systemc_harness.hpp"
 #include "test_util.hpp"

@@ -8,6 +8,7 @@
 #include "core/frame.hpp"
 #include "core/input_error.hpp"
 #include "core/scene.hpp"
+#include "modules/pipeline/pipeline.hpp"
 
 namespace test {
 
@@ -31,11 +32,16 @@ inline bool no_nan(const core::Frame& f) {
   return true;
 }
 
+// A scene's pipeline settings, resolved against the standard pipeline's declaration.
+inline core::Settings settings(const core::Scene& scene) {
+  return scene.pipeline.resolve(modules::standard_pipeline().all_settings());
+}
+
 // The InputError a scene text raises, or an empty string when it loads.
 inline core::InputError scene_error(const std::string& text,
                                     const std::vector<std::string>& overrides = {}) {
   try {
-    core::load_scene_text(text, "bad.json", ".", overrides);
+    settings(core::load_scene_text(text, "bad.json", ".", overrides));  // as the program checks it
   } catch (const core::InputError& e) {
     return e;
   }

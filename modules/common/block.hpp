@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <systemc>
@@ -21,20 +23,27 @@
 
 #include "modules/common/ops.hpp"
 #include "modules/common/packet.hpp"
+#include "modules/common/report.hpp"
 #include "modules/common/timeline.hpp"
 #include "modules/common/trace.hpp"
 
 namespace modules {
 
-struct Timing {
-  uint64_t latency = 1;  // cycles from a packet's start to its first result downstream
-  uint64_t ii = 1;       // cycles per unit of work (initiation interval)
-};
+class FramebufferKernel;
 
-struct BlockStats {
-  uint64_t packets = 0, pixels = 0, busy_cycles = 0, bypassed = 0;
-  Ops ops;
+// The end of a pass, a transaction of its own (command TLM_IGNORE_COMMAND, where span
+// packets and triangles are writes) that follows the pass's last packet through every
+// block. It starts the next pass (texel_project's splat pass after the main chain) and
+// carries what that pass needs from this one.
+struct PassEnd {
+  uint64_t cycle = 0;  // when every block of the pass so far has put out its last result
+  FramebufferKernel* framebuffer = nullptr;  // set by the framebuffer: the frame so far
 };
+// Kernels that hand something on at the end of a pass have end_pass(PassEnd&).
+template <class K, class = void> struct has_end_pass : std::false_type {};
+template <class K>
+struct has_end_pass<K, std::void_t<decltype(std::declval<K&>().end_pass(std::declval<PassEnd&>()))>>
+    : std::true_type {};
 
 // A block's calendar: when it is free, how long it has been busy.
 class Schedule {
@@ -80,6 +89,11 @@ class BlockInfo {
   virtual const Schedule& schedule() const = 0;
   virtual Schedule& schedule() = 0;
 
+  // Its place in a chain: the socket packets come in by (none at a pass's source), and
+  // its output bound to the next block's input (left unbound at the end of the chain).
+  virtual tlm::tlm_target_socket<32>* input() { return nullptr; }
+  virtual void bind_output(tlm::tlm_target_socket<32>&) {}
+
   // Inspection (docs/inspecting.md): waveforms of a region, the transaction timeline.
   // `filter`: the traced region and triangles (nullptr: everything), which limits the
   // timeline as well as the waveforms.
@@ -97,6 +111,9 @@ class BlockInfo {
   int probe_ = -1;
   Timeline* timeline_ = nullptr;
   uint32_t track_ = 0;
+
+  // A pass ends here once this block has put out its last result.
+  void pass_end(PassEnd& e) const { e.cycle = std::max(e.cycle, schedule().free_cycle() + schedule().timing().latency); }
 };
 
 // Forwards a transaction to `next` (a bound socket's interface; none after the last
@@ -151,6 +168,8 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
   }
   const Schedule& schedule() const override { return schedule_; }
   Schedule& schedule() override { return schedule_; }
+  tlm::tlm_target_socket<32>* input() override { return &in; }
+  void bind_output(tlm::tlm_target_socket<32>& next) override { out.bind(next); }
 
  private:
   // The next block's interface, once bound (what out-> returns, without the port's
@@ -158,6 +177,7 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
   void end_of_elaboration() override { next_ = out.size() > 0 ? out.operator->() : nullptr; }
 
   void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) override {
+    if (trans.get_command() != tlm::TLM_WRITE_COMMAND) return end_pass(trans, delay);
     SpanPacket& p = *reinterpret_cast<SpanPacket*>(trans.get_data_ptr());
     if (kernel_.bypass(p)) {
       // Through the bypass wire: no work, no cycles; the packet goes on with the time
@@ -202,6 +222,14 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
     } else {
       forward(next_, trans, p.cycle, period_, sc_core::sc_time_stamp());
     }
+  }
+
+  [[gnu::noinline]] void end_pass(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
+    PassEnd& e = *reinterpret_cast<PassEnd*>(trans.get_data_ptr());
+    if constexpr (has_end_pass<Kernel>::value) kernel_.end_pass(e);
+    pass_end(e);
+    trans.set_response_status(tlm::TLM_OK_RESPONSE);
+    if (next_) next_->b_transport(trans, delay);
   }
 
   // Pixel i leaves at the packet's first result plus its share of the packet's busy

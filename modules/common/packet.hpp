@@ -3,6 +3,7 @@
 // increments); per span, a packet of up to kSpanMax visible pixels of one raster row
 // of one triangle, in structure-of-arrays form, filled in block by block.
 #include <cstdint>
+#include <vector>
 
 #include "core/coverage.hpp"
 #include "core/scene.hpp"
@@ -30,6 +31,15 @@ struct Plane {
 
 // The material of a triangle made without a scene (testbenches): plain Phong.
 inline const core::Material kDefaultMaterial{};
+
+// The point lights of a scene, in the order of TriangleSetup's light slots (slot k of
+// TriangleSetup::l is light point_lights(scene)[k]).
+inline std::vector<int> point_lights(const core::Scene& scene) {
+  std::vector<int> lights;
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    if (scene.lights[i].type == core::Light::Type::Point) lights.push_back(int(i));
+  return lights;
+}
 
 struct TriangleSetup {
   uint32_t id = 0;                     // running number in the frame

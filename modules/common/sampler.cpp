@@ -6,12 +6,15 @@
 
 namespace modules {
 
+const std::vector<std::string>& filter_names() {
+  static const std::vector<std::string> names = {"nearest", "bilinear", "trilinear", "anisotropic", "ewa"};
+  return names;
+}
+
 Filter parse_filter(const std::string& name) {
-  if (name == "nearest") return Filter::Nearest;
-  if (name == "bilinear") return Filter::Bilinear;
-  if (name == "trilinear") return Filter::Trilinear;
-  if (name == "anisotropic") return Filter::Anisotropic;
-  if (name == "ewa") return Filter::Ewa;
+  const auto& names = filter_names();
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return Filter(i);
   throw std::invalid_argument("unknown filter " + name);
 }
 

@@ -29,6 +29,8 @@
 namespace modules {
 
 enum class Filter { Nearest, Bilinear, Trilinear, Anisotropic, Ewa };
+// The filters' names (pipeline.<block>.filter), in the order of Filter.
+const std::vector<std::string>& filter_names();
 Filter parse_filter(const std::string& name);
 
 // The filter a texture unit applies (pipeline.<block>.filter and .probes).

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/frame.hpp"
+#include "modules/common/block.hpp"
 #include "modules/common/number.hpp"
 #include "modules/common/packet.hpp"
 
@@ -31,6 +32,8 @@ class FramebufferKernel {
   }
 
   core::Frame& frame() { return frame_; }
+  // The end of the pass: the frame goes on to the passes after it (texel_project's).
+  void end_pass(PassEnd& e) { e.framebuffer = this; }
   // Colour, normal, depth and specular values that arrived NaN or infinite, replaced
   // before they reached the frame (in float32 none may arrive: the stress tests check it).
   uint64_t nonfinite() const { return nonfinite_; }

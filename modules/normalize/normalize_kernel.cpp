@@ -5,12 +5,15 @@
 
 namespace modules {
 
+const std::vector<std::string>& normalize_mode_names() {
+  static const std::vector<std::string> names = {"exact", "forward-difference", "rsqrt0", "rsqrt1", "rsqrt2"};
+  return names;
+}
+
 NormalizeMode parse_normalize_mode(const std::string& name) {
-  if (name == "exact") return NormalizeMode::Exact;
-  if (name == "forward-difference") return NormalizeMode::ForwardDifference;
-  if (name == "rsqrt0") return NormalizeMode::Rsqrt0;
-  if (name == "rsqrt1") return NormalizeMode::Rsqrt1;
-  if (name == "rsqrt2") return NormalizeMode::Rsqrt2;
+  const auto& names = normalize_mode_names();
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return NormalizeMode(i);
   throw std::invalid_argument("unknown normalize mode " + name);
 }
 

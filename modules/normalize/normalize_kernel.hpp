@@ -24,6 +24,8 @@
 namespace modules {
 
 enum class NormalizeMode { Exact, ForwardDifference, Rsqrt0, Rsqrt1, Rsqrt2 };
+// The modes' names (pipeline.normalize.mode), in the order of NormalizeMode.
+const std::vector<std::string>& normalize_mode_names();
 NormalizeMode parse_normalize_mode(const std::string& name);
 
 // The fast inverse square root: an estimate from the float's bits (the exponent

@@ -69,6 +69,7 @@ class ParallaxKernel {
 
   double precompute_seconds() const { return precompute_s_; }
   uint64_t iterations() const { return iterations_; }
+  nlohmann::json details() const { return {{"iterations", iterations_}}; }
   NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
 
   void set_capture(bool on) { capture_ = on; }

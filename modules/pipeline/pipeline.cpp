@@ -5,194 +5,112 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <functional>
+#include <stdexcept>
+
+#include <tlm_utils/tlm_quantumkeeper.h>
 
 #include "core/input_error.hpp"
-#include "modules/raster/raster.hpp"
-#include "modules/setup/setup.hpp"
-#include "modules/texel_project/texel_project.hpp"
 
 namespace modules {
 
-const std::vector<std::string>& block_names() {
-  static const std::vector<std::string> names = {
-      "setup",     "raster",        "parallax",      "normal_interp", "bump_fetch", "bump_perturb", "normal_mux",
-      "normalize", "vector_interp", "texture_fetch", "lighting",   "framebuffer", "texel_project"};
-  return names;
+// Each block's declaration, beside its kernel (modules/<name>/<name>_block.cpp).
+BlockDecl setup_block(), raster_block(), parallax_block(), normal_interp_block(), bump_fetch_block(),
+    bump_perturb_block(), normal_mux_block(), normalize_block(), vector_interp_block(), texture_fetch_block(),
+    lighting_block(), framebuffer_block(), texel_project_block();
+
+PipelineDecl standard_pipeline() {
+  PipelineDecl d;
+  // Read by the SystemC pipeline (`shadetlm render`); the golden model reads none of
+  // them. docs/configuration.md documents each one (a test checks that it does).
+  d.settings = {
+      {"clock_mhz", 500.0, {}, 1, 100000, "clock of every block, for simulated time"},
+      {"number_format", "float32", {}, 0, 0,
+       "number format of every datapath: float32, float16 or fixed:I.F (docs/numerical-stability.md)", true},
+      {"elaborate", "needed", {"needed", "all"}, 0, 0,
+       "elaborate the blocks some material needs, or every block (to measure what skipping saves)"},
+  };
+  // The passes, in order. A pre-pass (a depth pre-pass, say) would go before "main".
+  d.passes = {
+      {"main",
+       {setup_block(), raster_block(), parallax_block(), normal_interp_block(), bump_fetch_block(),
+        bump_perturb_block(), normal_mux_block(), normalize_block(), vector_interp_block(), texture_fetch_block(),
+        lighting_block(), framebuffer_block()}},
+      {"splat", {texel_project_block()}},
+  };
+  return d;
 }
 
-Options read_options(const core::Scene& scene) {
+namespace {
+// The chain the engines run: a source, a raster, span blocks, then frame passes.
+void check_shape(const std::vector<Pipeline::Elaborated>& blocks) {
+  auto kind = [&](size_t i) { return blocks[i].block->kind(); };
+  if (blocks.size() < 2 || kind(0) != Block::Kind::Source || kind(1) != Block::Kind::Raster)
+    throw std::logic_error("a pipeline starts with a source block and a raster");
+  for (size_t i = 2; i + 1 < blocks.size(); ++i)
+    if (kind(i) == Block::Kind::Frame && kind(i + 1) != Block::Kind::Frame)
+      throw std::logic_error("block " + blocks[i + 1].name + ": span blocks go before the frame passes");
+}
+}  // namespace
+
+Pipeline::Pipeline(const core::Scene& scene, const PipelineDecl& declaration)
+    : scene_(scene), settings_(scene.pipeline.resolve(declaration.all_settings())) {
   if (scene.lights.size() > size_t(kMaxLights))
     throw core::InputError(scene.file, "lights",
                            "the pipeline's lighting datapath holds at most " + std::to_string(kMaxLights) +
                                " lights, the scene has " + std::to_string(scene.lights.size()));
-  Options o;
-  o.perspective = scene.pipeline.string("normal_interp.mode") == "perspective";
-  const std::string reseed = scene.pipeline.string("normal_interp.reseed");
-  o.reseed = reseed == "none" ? 0 : reseed == "line" ? -1 : std::stoi(reseed.substr(4));  // tileN
-  o.normalize = parse_normalize_mode(scene.pipeline.string("normalize.mode"));
-  o.clock_mhz = scene.pipeline.number("clock_mhz");
-  o.elaborate_all = scene.pipeline.string("elaborate") == "all";
-  o.affine_bump_vectors = scene.pipeline.string("vector_interp.bump_vectors") == "affine";
-  o.texture.filter = parse_filter(scene.pipeline.string("texture_fetch.filter"));
-  o.texture.probes = scene.pipeline.integer("texture_fetch.probes");
-  o.splat_units = scene.pipeline.integer("texel_project.units");
-  o.bump.filter = parse_filter(scene.pipeline.string("bump_fetch.filter"));
-  o.bump.probes = scene.pipeline.integer("bump_fetch.probes");
-  o.bump.renormalize_mips = scene.pipeline.boolean("bump_fetch.renormalize_mips");
-  for (const auto& b : core::formatted_blocks()) o.formats[b] = scene.pipeline.format(b);
-  for (const auto& b : block_names())
-    o.timing[b] = Timing{uint64_t(scene.pipeline.integer(b + ".latency")),
-                         uint64_t(scene.pipeline.integer(b + ".ii"))};
-  return o;
-}
-
-Kernels::Kernels(const core::Scene& scene, const Options& o)
-    : setup(scene, o.perspective, o.affine_bump_vectors),
-      raster(scene.camera.width, scene.camera.height),
-      normal_interp(o.reseed, o.formats.at("normal_interp")),
-      normalize(o.normalize, o.formats.at("normalize")),
-      lighting(scene, o.formats.at("lighting")),
-      framebuffer(scene, TexelProjectKernel::needed(scene)) {
+  clock_mhz_ = settings_.number("clock_mhz");
   // Only the blocks some material needs — or all of them (pipeline.elaborate = all), to
   // measure what the skipping saves.
-  const bool all = o.elaborate_all;
-  if (all || TexelProjectKernel::needed(scene)) texel_project.emplace(scene, o.splat_units, o.formats.at("texel_project"));
-  if (all || ParallaxKernel::needed(scene)) parallax.emplace(scene, o.formats.at("parallax"));
-  if (all || BumpFetchKernel::needed(scene)) bump_fetch.emplace(scene, o.bump);
-  if (all || BumpPerturbKernel::needed(scene)) bump_perturb.emplace(o.perspective);
-  if (all || NormalMuxKernel::needed(scene)) normal_mux.emplace();
-  if (all || VectorInterpKernel::needed(scene))
-    vector_interp.emplace(scene, setup.point_lights(), o.affine_bump_vectors, o.formats.at("vector_interp"));
-  if (all || TextureFetchKernel::needed(scene)) texture_fetch.emplace(scene, o.texture);
+  const bool all = settings_.string("elaborate") == "all";
+  for (const auto& pass : declaration.passes)
+    for (const auto& b : pass.blocks) {
+      if (!all && b.needed && !b.needed(scene)) continue;
+      const Timing timing{uint64_t(settings_.integer(b.name + ".latency")), uint64_t(settings_.integer(b.name + ".ii"))};
+      blocks_.push_back({b.name, timing, b.make(BlockContext{scene, settings_, b.name})});
+    }
+  check_shape(blocks_);
 }
 
 namespace {
-
-void fill_counts(RenderResult& r, const Kernels& k) {
-  r.triangles_in = k.setup.triangles_in();
-  r.triangles_drawn = k.setup.triangles_out();
-  r.pixels_walked = k.raster.pixels_walked();
-  r.pixels_hidden = k.raster.pixels_hidden();
-  r.precompute_s = (k.bump_fetch ? k.bump_fetch->precompute_seconds() : 0.0) +
-                   (k.parallax ? k.parallax->precompute_seconds() : 0.0);
-  r.nonfinite_replaced = k.framebuffer.nonfinite();
-  for (auto& b : r.blocks) {
-    if (b.name == "normal_interp") b.ranges = k.normal_interp.ranges(), b.numbers = k.normal_interp.numbers();
-    if (b.name == "normalize") b.numbers = k.normalize.numbers();
-    if (b.name == "lighting") b.numbers = k.lighting.numbers();
-    if (b.name == "vector_interp") b.numbers = k.vector_interp->numbers();
-    if (b.name == "bump_fetch") b.ranges = k.bump_fetch->ranges(), b.numbers = k.bump_fetch->numbers();
-    if (b.name == "bump_perturb") b.ranges = k.bump_perturb->ranges(), b.numbers = k.bump_perturb->numbers();
-    if (b.name == "texture_fetch") b.numbers = k.texture_fetch->numbers();
-    if (b.name == "vector_interp") b.ranges = k.vector_interp->ranges();
-    if (b.name == "texel_project") b.details = k.texel_project->stats(), b.numbers = k.texel_project->numbers();
-    if (b.name == "texture_fetch") b.details = {{"lod_computations", k.texture_fetch->lod_computations()}};
-    if (b.name == "parallax") b.details = {{"iterations", k.parallax->iterations()}}, b.numbers = k.parallax->numbers();
-  }
-}
-
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// The SystemC top level: the blocks the scene needs, bound in a chain.
+// The SystemC top level: a module per elaborated block, each bound to the next.
 class Top : public sc_core::sc_module {
  public:
-  Top(sc_core::sc_module_name name, Kernels& k, const Options& o, const Inspect& inspect, int width, int height)
-      : sc_core::sc_module(name), period_(1.0 / o.clock_mhz, sc_core::SC_US) {
-    setup_ = std::make_unique<Setup>("setup", k.setup, o.timing.at("setup"), period_);
-    raster_ = std::make_unique<Raster>("raster", k.raster, o.timing.at("raster"), period_);
-    setup_->out.bind(raster_->in);
-    blocks_ = {setup_.get(), raster_.get()};
-    // Binds the output of the last block so far to the next one's input.
-    std::function<void(tlm::tlm_target_socket<32>&)> bind_last = [&](auto& in) { raster_->out.bind(in); };
-    auto add = [&](auto stage) {
-      bind_last(stage->in);
-      bind_last = [s = stage.get()](auto& in) { s->out.bind(in); };
-      blocks_.push_back(stage.get());
-      return stage;
-    };
-    if (k.parallax) parallax_ = add(stage("parallax", *k.parallax, o));
-    normal_interp_ = add(stage("normal_interp", k.normal_interp, o));
-    if (k.bump_fetch) bump_fetch_ = add(stage("bump_fetch", *k.bump_fetch, o));
-    if (k.bump_perturb) bump_perturb_ = add(stage("bump_perturb", *k.bump_perturb, o));
-    if (k.normal_mux) normal_mux_ = add(stage("normal_mux", *k.normal_mux, o));
-    normalize_ = add(stage("normalize", k.normalize, o));
-    if (k.vector_interp) vector_interp_ = add(stage("vector_interp", *k.vector_interp, o));
-    if (k.texture_fetch) texture_fetch_ = add(stage("texture_fetch", *k.texture_fetch, o));
-    lighting_ = add(stage("lighting", k.lighting, o));
-    // The framebuffer ends the chain: its output socket stays unbound.
-    framebuffer_ = stage("framebuffer", k.framebuffer, o);
-    bind_last(framebuffer_->in);
-    blocks_.push_back(framebuffer_.get());
-    if (k.texel_project) {
-      texel_project_ = std::make_unique<TexelProject>("texel_project", *k.texel_project, k.framebuffer, *setup_,
-                                                      *framebuffer_, o.timing.at("texel_project"), period_);
-      blocks_.push_back(texel_project_.get());
-    }
+  Top(sc_core::sc_module_name name, Pipeline& pipeline, const Inspect& inspect)
+      : sc_core::sc_module(name), period_(1.0 / pipeline.clock_mhz(), sc_core::SC_US) {
+    for (auto& b : pipeline.blocks()) modules_.push_back(b.block->module(b.name.c_str(), b.timing, period_));
+    for (size_t i = 0; i + 1 < modules_.size(); ++i) modules_[i]->bind_output(*modules_[i + 1]->input());
 
+    const core::Camera& camera = pipeline.scene().camera;
     region_ = inspect.region;
-    if (!inspect.region_given) region_.x0 = 0, region_.y0 = 0, region_.x1 = width - 1, region_.y1 = height - 1;
-    filter_ = inspect.region_given ? &region_ : nullptr;
+    if (!inspect.region_given) region_.x0 = 0, region_.y0 = 0, region_.x1 = camera.width - 1, region_.y1 = camera.height - 1;
+    const TraceRegion* filter = inspect.region_given ? &region_ : nullptr;
     if (!inspect.vcd.empty()) tracer_ = std::make_unique<Tracer>("tracer", inspect.vcd, region_, period_);
-    auto probe = [&](const std::string& name, const std::vector<std::string>& values) {
-      return tracer_ ? tracer_->add_probe(name, values) : -1;
-    };
-    setup_->attach(tracer_.get(), -1, timeline(inspect), 0, filter_);
-    raster_->attach(tracer_.get(), probe("raster", Raster::trace_names()), timeline(inspect), 1, filter_);
-    attach(parallax_.get(), probe, inspect);
-    attach(normal_interp_.get(), probe, inspect);
-    attach(bump_fetch_.get(), probe, inspect);
-    attach(bump_perturb_.get(), probe, inspect);
-    attach(normal_mux_.get(), probe, inspect);
-    attach(normalize_.get(), probe, inspect);
-    attach(vector_interp_.get(), probe, inspect);
-    attach(texture_fetch_.get(), probe, inspect);
-    attach(lighting_.get(), probe, inspect);
-    attach(framebuffer_.get(), probe, inspect);
-    for (BlockInfo* b : blocks_) b->schedule().keep_histogram(inspect.bin_cycles);
+    Timeline* timeline = inspect.timeline.empty() ? nullptr : &timeline_;
+    for (size_t i = 0; i < modules_.size(); ++i) {
+      const auto names = pipeline.blocks()[i].block->trace_names();
+      const int probe = tracer_ && !names.empty() ? tracer_->add_probe(pipeline.blocks()[i].name, names) : -1;
+      modules_[i]->attach(tracer_.get(), probe, timeline, uint32_t(i), filter);
+      modules_[i]->schedule().keep_histogram(inspect.bin_cycles);
+    }
   }
-  const std::vector<BlockInfo*>& blocks() const { return blocks_; }
+  const std::vector<std::unique_ptr<BlockInfo>>& modules() const { return modules_; }
   const Tracer* tracer() const { return tracer_.get(); }
   const Timeline& timeline_slices() const { return timeline_; }
   std::vector<std::string> names() const {
     std::vector<std::string> n;
-    for (BlockInfo* b : blocks_) n.push_back(b->block_name());
+    for (const auto& m : modules_) n.push_back(m->block_name());
     return n;
   }
 
  private:
-  Timeline* timeline(const Inspect& inspect) { return inspect.timeline.empty() ? nullptr : &timeline_; }
-  template <class K, class Probe>
-  void attach(Stage<K>* s, Probe& probe, const Inspect& inspect) {
-    if (!s) return;
-    const auto track = uint32_t(std::find(blocks_.begin(), blocks_.end(), s) - blocks_.begin());
-    s->attach(tracer_.get(), probe(s->block_name(), K::trace_names()), timeline(inspect), track, filter_);
-  }
-  template <class K>
-  std::unique_ptr<Stage<K>> stage(const char* name, K& kernel, const Options& o) {
-    return std::make_unique<Stage<K>>(name, kernel, o.timing.at(name), period_);
-  }
-
   sc_core::sc_time period_;
-  std::unique_ptr<Setup> setup_;
-  std::unique_ptr<Raster> raster_;
-  std::unique_ptr<Stage<ParallaxKernel>> parallax_;
-  std::unique_ptr<Stage<NormalInterpKernel>> normal_interp_;
-  std::unique_ptr<Stage<BumpFetchKernel>> bump_fetch_;
-  std::unique_ptr<Stage<BumpPerturbKernel>> bump_perturb_;
-  std::unique_ptr<Stage<NormalMuxKernel>> normal_mux_;
-  std::unique_ptr<Stage<NormalizeKernel>> normalize_;
-  std::unique_ptr<Stage<VectorInterpKernel>> vector_interp_;
-  std::unique_ptr<Stage<TextureFetchKernel>> texture_fetch_;
-  std::unique_ptr<Stage<LightingKernel>> lighting_;
-  std::unique_ptr<Stage<FramebufferKernel>> framebuffer_;
-  std::unique_ptr<TexelProject> texel_project_;
-  std::vector<BlockInfo*> blocks_;
+  std::vector<std::unique_ptr<BlockInfo>> modules_;
   TraceRegion region_;
-  const TraceRegion* filter_ = nullptr;
   std::unique_ptr<Tracer> tracer_;
   Timeline timeline_;
 };
@@ -200,99 +118,86 @@ class Top : public sc_core::sc_module {
 }  // namespace
 
 RenderResult render_loop(const core::Scene& scene, const Inspect& inspect) {
-  const Options o = read_options(scene);
-  Kernels k(scene, o);
-  return run_loop(k, o, inspect);
+  return render_loop(scene, standard_pipeline(), inspect);
+}
+RenderResult render_loop(const core::Scene& scene, const PipelineDecl& declaration, const Inspect& inspect) {
+  Pipeline pipeline(scene, declaration);
+  return run_loop(pipeline, inspect);
 }
 
-RenderResult run_loop(Kernels& k, const Options& o, const Inspect& inspect) {
-  if (inspect.progress) k.setup.set_progress(inspect.progress);
+RenderResult run_loop(Pipeline& pipeline, const Inspect& inspect) {
+  auto& blocks = pipeline.blocks();
+  if (inspect.progress) blocks[0].block->set_progress(inspect.progress);
+  std::vector<Block*> spans;
+  for (auto& b : blocks)
+    if (b.block->kind() == Block::Kind::Span) spans.push_back(b.block.get());
   RenderResult r;
   r.engine = "loop";
-  r.clock_mhz = o.clock_mhz;
+  r.clock_mhz = pipeline.clock_mhz();
   const auto start = std::chrono::steady_clock::now();
-  k.setup.run([&](const TriangleSetup& t) {
-    k.raster.run(t, [&](SpanPacket& p) {
-      if (k.parallax && !k.parallax->bypass(p)) k.parallax->process(p);
-      if (!k.normal_interp.bypass(p)) k.normal_interp.process(p);
-      if (k.bump_fetch && !k.bump_fetch->bypass(p)) k.bump_fetch->process(p);
-      if (k.bump_perturb && !k.bump_perturb->bypass(p)) k.bump_perturb->process(p);
-      if (k.normal_mux && !k.normal_mux->bypass(p)) k.normal_mux->process(p);
-      k.normalize.process(p);
-      if (k.vector_interp && !k.vector_interp->bypass(p)) k.vector_interp->process(p);
-      if (k.texture_fetch && !k.texture_fetch->bypass(p)) k.texture_fetch->process(p);
-      k.lighting.process(p);
-      k.framebuffer.process(p);
+  Block& raster = *blocks[1].block;
+  blocks[0].block->emit_triangles([&](const TriangleSetup& t) {
+    raster.emit_spans(t, [&](SpanPacket& p) {
+      for (Block* b : spans) b->process(p);
       r.pixels_shaded += uint64_t(p.count);
     });
   });
-  if (k.texel_project) k.texel_project->run(k.framebuffer);
+  PassEnd end;  // the main pass has ended: the passes after it run
+  for (auto& b : blocks) b.block->end_pass(end);
   r.wall_s = seconds_since(start);
-  auto report = [&](const char* name, const Ops& ops) {
-    BlockReport b;
-    b.name = name;
-    b.stats.ops = ops;
-    b.timing = o.timing.at(name);
-    r.blocks.push_back(b);
-  };
-  report("setup", k.setup.ops());
-  report("raster", k.raster.ops());
-  if (k.parallax) report("parallax", k.parallax->ops());
-  report("normal_interp", k.normal_interp.ops());
-  if (k.bump_fetch) report("bump_fetch", k.bump_fetch->ops());
-  if (k.bump_perturb) report("bump_perturb", k.bump_perturb->ops());
-  if (k.normal_mux) report("normal_mux", k.normal_mux->ops());
-  report("normalize", k.normalize.ops());
-  if (k.vector_interp) report("vector_interp", k.vector_interp->ops());
-  if (k.texture_fetch) report("texture_fetch", k.texture_fetch->ops());
-  report("lighting", k.lighting.ops());
-  report("framebuffer", k.framebuffer.ops());
-  if (k.texel_project) report("texel_project", k.texel_project->ops());
-  fill_counts(r, k);
-  r.frame = std::move(k.framebuffer.frame());
+  for (auto& b : blocks) {
+    BlockReport report;
+    report.name = b.name;
+    report.stats.ops = b.block->ops();
+    report.timing = b.timing;
+    b.block->finish(report, r);
+    r.blocks.push_back(std::move(report));
+  }
   return r;
 }
 
 RenderResult render_systemc(const core::Scene& scene, const Inspect& inspect) {
-  const Options o = read_options(scene);
-  Kernels k(scene, o);
-  return run_systemc(k, o, inspect);
+  return render_systemc(scene, standard_pipeline(), inspect);
+}
+RenderResult render_systemc(const core::Scene& scene, const PipelineDecl& declaration, const Inspect& inspect) {
+  Pipeline pipeline(scene, declaration);
+  return run_systemc(pipeline, inspect);
 }
 
-RenderResult run_systemc(Kernels& k, const Options& o, const Inspect& inspect) {
-  if (inspect.progress) k.setup.set_progress(inspect.progress);
-  const core::Camera& camera = k.setup.scene().camera;
-  Top top("shadetlm", k, o, inspect, camera.width, camera.height);
+RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
+  if (inspect.progress) pipeline.blocks()[0].block->set_progress(inspect.progress);
+  const double clock_mhz = pipeline.clock_mhz();
+  Top top("shadetlm", pipeline, inspect);
   // One quantum of 10 000 cycles: the source yields rarely, and never per pixel.
-  tlm_utils::tlm_quantumkeeper::set_global_quantum(sc_core::sc_time(1e4 / o.clock_mhz, sc_core::SC_US));
+  tlm_utils::tlm_quantumkeeper::set_global_quantum(sc_core::sc_time(1e4 / clock_mhz, sc_core::SC_US));
   RenderResult r;
   r.engine = "systemc";
-  r.clock_mhz = o.clock_mhz;
+  r.clock_mhz = clock_mhz;
   const auto start = std::chrono::steady_clock::now();
   sc_core::sc_start();
   r.wall_s = seconds_since(start);
-  for (BlockInfo* b : top.blocks()) {
-    BlockReport br;
-    br.name = b->block_name();
-    br.stats = b->stats();
-    br.timing = b->schedule().timing();
-    br.free_cycle = b->schedule().free_cycle();
-    br.busy_per_bin = b->schedule().busy_per_bin();
-    r.frame_cycles = std::max(r.frame_cycles, br.free_cycle + br.timing.latency);
-    r.blocks.push_back(br);
+  for (size_t i = 0; i < top.modules().size(); ++i) {
+    const BlockInfo& m = *top.modules()[i];
+    BlockReport report;
+    report.name = m.block_name();
+    report.stats = m.stats();
+    report.timing = m.schedule().timing();
+    report.free_cycle = m.schedule().free_cycle();
+    report.busy_per_bin = m.schedule().busy_per_bin();
+    r.frame_cycles = std::max(r.frame_cycles, report.free_cycle + report.timing.latency);
+    // Every packet the raster puts out reaches the end of the chain.
+    if (pipeline.blocks()[i].block->kind() == Block::Kind::Raster) r.pixels_shaded = report.stats.pixels;
+    pipeline.blocks()[i].block->finish(report, r);
+    r.blocks.push_back(std::move(report));
   }
-  fill_counts(r, k);
   r.bin_cycles = inspect.bin_cycles;
   if (top.tracer() && std::filesystem::exists(inspect.vcd)) {
     r.trace_records = top.tracer()->records();
-    const double ps = 1e6 / o.clock_mhz;
+    const double ps = 1e6 / clock_mhz;
     write_gtkw(inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw", inspect.vcd, top.tracer()->probes(),
                double(top.tracer()->first_cycle()) * ps, double(top.tracer()->last_cycle()) * ps);
   }
-  if (!inspect.timeline.empty()) top.timeline_slices().write(inspect.timeline, top.names(), o.clock_mhz);
-  for (const auto& b : r.blocks)
-    if (b.name == "framebuffer") r.pixels_shaded = b.stats.pixels;
-  r.frame = std::move(k.framebuffer.frame());
+  if (!inspect.timeline.empty()) top.timeline_slices().write(inspect.timeline, top.names(), clock_mhz);
   return r;
 }
 
@@ -324,86 +229,6 @@ void write_gtkw(const std::string& path, const std::string& vcd, const std::vect
     }
     if (!out) throw std::runtime_error(path + ": cannot write the GTKWave save file");
   });
-}
-
-const BlockReport* RenderResult::bottleneck() const {
-  const BlockReport* best = nullptr;
-  for (const auto& b : blocks)
-    if (!best || b.stats.busy_cycles > best->stats.busy_cycles) best = &b;
-  return best;
-}
-
-Ops RenderResult::total_ops() const {
-  Ops o;
-  for (const auto& b : blocks) o += b.stats.ops;
-  return o;
-}
-
-nlohmann::json RenderResult::stats_json() const {
-  nlohmann::json j;
-  j["engine"] = engine;
-  j["wall_s"] = wall_s;
-  j["clock_mhz"] = clock_mhz;
-  j["frame_cycles"] = frame_cycles;
-  j["sim_time_s"] = double(frame_cycles) / (clock_mhz * 1e6);
-  j["bottleneck"] = frame_cycles > 0 && bottleneck() ? nlohmann::json(bottleneck()->name) : nlohmann::json();
-  j["precompute_s"] = precompute_s;
-  j["nonfinite_replaced"] = nonfinite_replaced;
-  j["elaborated"] = nlohmann::json::array();
-  for (const auto& b : blocks) j["elaborated"].push_back(b.name);
-  j["triangles"] = {{"in", triangles_in}, {"drawn", triangles_drawn}};
-  j["pixels"] = {{"walked", pixels_walked}, {"hidden", pixels_hidden}, {"shaded", pixels_shaded}};
-  j["blocks"] = nlohmann::json::object();
-  // Every block's non-finite outputs and number events, summed (docs/numerical-stability.md).
-  nlohmann::json numbers = {{"nonfinite", uint64_t(0)}, {"overflows", uint64_t(0)}, {"invalid", uint64_t(0)}};
-  for (const auto& b : blocks) {
-    nlohmann::json bj = {{"packets", b.stats.packets},     {"pixels", b.stats.pixels},
-                         {"bypassed", b.stats.bypassed},   {"busy_cycles", b.stats.busy_cycles},
-                         {"latency", b.timing.latency},    {"ii", b.timing.ii},
-                         {"ops", b.stats.ops.to_json()}};
-    bj["utilization"] = frame_cycles > 0 ? double(b.stats.busy_cycles) / double(frame_cycles) : 0.0;
-    if (!b.ranges.empty()) bj["ranges"] = to_json(b.ranges);
-    if (!b.details.is_null()) bj["details"] = b.details;
-    if (b.numbers) {
-      bj["numbers"] = {{"format", b.numbers->format},
-                       {"nonfinite", b.numbers->counted ? nlohmann::json(b.numbers->nonfinite) : nlohmann::json()},
-                       {"overflows", b.numbers->events.overflows}, {"invalid", b.numbers->events.invalid}};
-      numbers["nonfinite"] = numbers["nonfinite"].get<uint64_t>() + b.numbers->nonfinite;
-      numbers["overflows"] = numbers["overflows"].get<uint64_t>() + b.numbers->events.overflows;
-      numbers["invalid"] = numbers["invalid"].get<uint64_t>() + b.numbers->events.invalid;
-    }
-    j["blocks"][b.name] = bj;
-  }
-  j["numbers"] = numbers;
-  if (bin_cycles > 0 && frame_cycles > 0) {
-    // Utilization over time: each block's busy share of every bin, and the busiest
-    // block per bin. No back-pressure in the timing model, so no stalls: a block is
-    // busy or waiting for input (a bubble).
-    nlohmann::json over_time = {{"bin_cycles", bin_cycles}, {"blocks", nlohmann::json::object()}};
-    const size_t bins = size_t((frame_cycles + bin_cycles - 1) / bin_cycles);
-    std::vector<std::pair<uint64_t, std::string>> busiest(bins, {0, ""});
-    for (const auto& b : blocks) {
-      std::vector<double> share(bins, 0.0);
-      for (size_t i = 0; i < bins && i < b.busy_per_bin.size(); ++i) {
-        const uint64_t length = std::min<uint64_t>(bin_cycles, frame_cycles - i * bin_cycles);  // last one partial
-        share[i] = double(b.busy_per_bin[i]) / double(length);
-        if (b.busy_per_bin[i] > busiest[i].first) busiest[i] = {b.busy_per_bin[i], b.name};
-      }
-      over_time["blocks"][b.name] = share;
-      j["blocks"][b.name]["idle_cycles"] = frame_cycles - b.stats.busy_cycles;
-    }
-    nlohmann::json names = nlohmann::json::array();
-    for (const auto& [busy, name] : busiest) names.push_back(busy > 0 ? nlohmann::json(name) : nlohmann::json());
-    over_time["bottleneck"] = names;
-    j["utilization_over_time"] = over_time;
-  }
-  const nlohmann::json total = total_ops().to_json();
-  j["ops"] = total;
-  nlohmann::json per_pixel;
-  const double n = pixels_shaded > 0 ? double(pixels_shaded) : 1.0;
-  for (const auto& [kind, count] : total.items()) per_pixel[kind] = count.get<double>() / n;
-  j["ops_per_shaded_pixel"] = per_pixel;
-  return j;
 }
 
 }  // namespace modules

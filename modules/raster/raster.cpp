@@ -16,6 +16,10 @@ BlockStats Raster::stats() const {
 }
 
 void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
+  if (trans.get_command() != tlm::TLM_WRITE_COMMAND) {  // the end of the pass
+    pass_end(*reinterpret_cast<PassEnd*>(trans.get_data_ptr()));
+    return out->b_transport(trans, delay);
+  }
   const TriangleSetup& t = *reinterpret_cast<const TriangleSetup*>(trans.get_data_ptr());
   const sc_core::sc_time now = sc_core::sc_time_stamp();  // the same for every packet of the triangle
   const uint64_t arrival = uint64_t((now + delay) / period_ + 0.5);

@@ -17,6 +17,8 @@ class Raster : public sc_core::sc_module, public BlockInfo {
   BlockStats stats() const override;
   const Schedule& schedule() const override { return schedule_; }
   Schedule& schedule() override { return schedule_; }
+  tlm::tlm_target_socket<32>* input() override { return &in; }
+  void bind_output(tlm::tlm_target_socket<32>& next) override { out.bind(next); }
   // Waveforms: 1/w and w of each visible pixel.
   static std::vector<std::string> trace_names() { return {"inv_w", "w"}; }
 

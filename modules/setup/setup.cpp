@@ -38,8 +38,14 @@ void Setup::run() {
     if (quantum_.need_sync()) quantum_.sync();
   });
   quantum_.sync();
-  finished_ = true;
-  done.notify(sc_core::SC_ZERO_TIME);
+  // Every transaction is a blocking call: the blocks downstream are done with the frame.
+  PassEnd end;
+  pass_end(end);
+  trans.set_command(tlm::TLM_IGNORE_COMMAND);
+  trans.set_data_ptr(reinterpret_cast<unsigned char*>(&end));
+  trans.set_data_length(sizeof(PassEnd));
+  sc_core::sc_time delay = sc_core::SC_ZERO_TIME;
+  out->b_transport(trans, delay);
   if (tracer_) tracer_->source_done();
 }
 

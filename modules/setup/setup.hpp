@@ -2,7 +2,8 @@
 // The setup block, the head of the pipeline: a SystemC thread that sets up each
 // triangle (SetupKernel) and sends it on as one transaction. It holds the pipeline's
 // one quantum keeper: local time advances by II cycles per triangle and the thread
-// yields to the kernel only when a quantum is used up.
+// yields to the kernel only when a quantum is used up. After the last triangle it sends
+// the end of the pass (PassEnd), which starts the passes after it.
 #include "modules/common/block.hpp"  // <systemc> first: the quantum keeper needs it
 #include "modules/setup/setup_kernel.hpp"
 
@@ -13,10 +14,6 @@ namespace modules {
 class Setup : public sc_core::sc_module, public BlockInfo {
  public:
   tlm_utils::simple_initiator_socket<Setup> out;
-  // The frame's last triangle has gone through the pipeline (every transaction is a
-  // blocking call, so the blocks downstream are done with it too).
-  sc_core::sc_event done;
-  bool finished() const { return finished_; }
 
   SC_HAS_PROCESS(Setup);
   Setup(sc_core::sc_module_name name, SetupKernel& kernel, Timing timing, sc_core::sc_time period);
@@ -25,6 +22,7 @@ class Setup : public sc_core::sc_module, public BlockInfo {
   BlockStats stats() const override;
   const Schedule& schedule() const override { return schedule_; }
   Schedule& schedule() override { return schedule_; }
+  void bind_output(tlm::tlm_target_socket<32>& next) override { out.bind(next); }
 
  private:
   void run();
@@ -34,7 +32,6 @@ class Setup : public sc_core::sc_module, public BlockInfo {
   sc_core::sc_time period_;
   tlm_utils::tlm_quantumkeeper quantum_;
   BlockStats stats_;
-  bool finished_ = false;
 };
 
 }  // namespace modules

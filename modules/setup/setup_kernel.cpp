@@ -12,10 +12,8 @@ SetupKernel::SetupKernel(const core::Scene& scene, bool perspective, bool affine
       perspective_(perspective),
       affine_bump_vectors_(affine_bump_vectors),
       view_projection_(scene.camera.projection() * scene.camera.view()),
-      local_viewer_(scene.camera.local_viewer) {
-  for (size_t i = 0; i < scene.lights.size(); ++i)
-    if (scene.lights[i].type == core::Light::Type::Point) point_lights_.push_back(int(i));
-}
+      point_lights_(modules::point_lights(scene)),
+      local_viewer_(scene.camera.local_viewer) {}
 
 bool SetupKernel::setup(const Vertex v[3], const core::SnappedTriangle& coverage, TriangleSetup& t) {
   // The reference pixel: the leftmost covered pixel of the top covered row.

@@ -51,8 +51,6 @@ class SetupKernel {
   void set_progress(std::function<void(double)> progress) { progress_ = std::move(progress); }
   uint64_t triangles_in() const { return triangles_in_; }
   uint64_t triangles_out() const { return triangles_out_; }
-  // The point lights, in the order of TriangleSetup::l (slot k is light point_lights()[k]).
-  const std::vector<int>& point_lights() const { return point_lights_; }
   const core::Scene& scene() const { return scene_; }
 
  private:

@@ -2,16 +2,10 @@
 
 namespace modules {
 
-TexelProject::TexelProject(sc_core::sc_module_name name, TexelProjectKernel& kernel, FramebufferKernel& framebuffer,
-                           const Setup& setup, const BlockInfo& last_block, Timing timing, sc_core::sc_time period)
-    : sc_core::sc_module(name),
-      kernel_(kernel),
-      framebuffer_(framebuffer),
-      setup_(setup),
-      last_block_(last_block),
-      schedule_(timing),
-      period_(period) {
-  SC_THREAD(run);
+TexelProject::TexelProject(sc_core::sc_module_name name, TexelProjectKernel& kernel, Timing timing,
+                           sc_core::sc_time)
+    : sc_core::sc_module(name), in("in"), out("out"), kernel_(kernel), schedule_(timing) {
+  in.bind(*this);
 }
 
 BlockStats TexelProject::stats() const {
@@ -23,12 +17,17 @@ BlockStats TexelProject::stats() const {
   return s;
 }
 
-void TexelProject::run() {
-  if (!setup_.finished()) wait(setup_.done);
-  kernel_.run(framebuffer_);
-  // The pass starts when the last pixel of the frame is written.
-  const uint64_t start = last_block_.schedule().free_cycle() + last_block_.schedule().timing().latency;
-  schedule_.occupy(start, kernel_.cycles());
+void TexelProject::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
+  trans.set_response_status(tlm::TLM_OK_RESPONSE);
+  if (trans.get_command() != tlm::TLM_WRITE_COMMAND) {  // the end of the main pass: the frame
+    PassEnd& e = *reinterpret_cast<PassEnd*>(trans.get_data_ptr());
+    if (e.framebuffer) {
+      kernel_.run(*e.framebuffer);
+      schedule_.occupy(e.cycle, kernel_.cycles());
+    }
+    pass_end(e);
+  }
+  if (out.size() > 0) out->b_transport(trans, delay);  // span packets never reach a later pass
 }
 
 }  // namespace modules

@@ -1,34 +1,32 @@
 #pragma once
-// The texel_project block as a SystemC module: a thread that waits for the frame's
-// rasterization to finish (setup's `done`), then runs the second pass of
-// TexelProjectKernel on the framebuffer; its cycles start when the framebuffer has
-// written its last pixel.
+// The texel_project block as a SystemC module: a pass of its own after the main chain.
+// The end of that pass (PassEnd, from the framebuffer) brings the frame; the module runs
+// the second pass of TexelProjectKernel on it, its cycles starting when the main pass
+// has put out its last pixel, and hands the end of its own pass on.
 #include "modules/common/block.hpp"
-#include "modules/setup/setup.hpp"
 #include "modules/texel_project/texel_project_kernel.hpp"
 
 namespace modules {
 
-class TexelProject : public sc_core::sc_module, public BlockInfo {
+class TexelProject : public sc_core::sc_module, public BlockInfo, public PacketTarget {
  public:
-  SC_HAS_PROCESS(TexelProject);
-  TexelProject(sc_core::sc_module_name name, TexelProjectKernel& kernel, FramebufferKernel& framebuffer,
-               const Setup& setup, const BlockInfo& last_block, Timing timing, sc_core::sc_time period);
+  tlm::tlm_target_socket<32> in;
+  tlm_utils::simple_initiator_socket_optional<TexelProject> out;
+
+  TexelProject(sc_core::sc_module_name name, TexelProjectKernel& kernel, Timing timing, sc_core::sc_time period);
 
   std::string block_name() const override { return basename(); }
   BlockStats stats() const override;
   const Schedule& schedule() const override { return schedule_; }
   Schedule& schedule() override { return schedule_; }
+  tlm::tlm_target_socket<32>* input() override { return &in; }
+  void bind_output(tlm::tlm_target_socket<32>& next) override { out.bind(next); }
 
  private:
-  void run();
+  void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) override;
 
   TexelProjectKernel& kernel_;
-  FramebufferKernel& framebuffer_;
-  const Setup& setup_;
-  const BlockInfo& last_block_;
   Schedule schedule_;
-  sc_core::sc_time period_;
 };
 
 }  // namespace modules

@@ -316,7 +316,7 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
     if (span.first <= span.second) ops_.line += uint64_t(span.second - span.first + 1);
 }
 
-nlohmann::json TexelProjectKernel::stats() const {
+nlohmann::json TexelProjectKernel::details() const {
   uint64_t busiest = 0, busiest_rr = 0;
   for (uint64_t u : unit_texels_) busiest = std::max(busiest, u);
   for (uint64_t u : unit_round_robin_) busiest_rr = std::max(busiest_rr, u);

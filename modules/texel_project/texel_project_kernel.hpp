@@ -59,7 +59,7 @@ class TexelProjectKernel {
   // tiles; a texel goes to the owner of its first pixel, and its splats into neighbouring
   // tiles are writes across units, counted), then the resolve, spread likewise.
   uint64_t cycles() const { return cycles_; }
-  nlohmann::json stats() const;
+  nlohmann::json details() const;  // its figures in the statistics
   // Non-finite counts are of the texels' screen positions and w (dropped as off the
   // frame), in reduced formats only: in float32, w > 1e-6 keeps the position finite.
   NumberStats numbers() const {

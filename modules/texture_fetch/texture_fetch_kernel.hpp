@@ -35,6 +35,7 @@ class TextureFetchKernel {
     return p.tri->material->texture < 0 || p.tri->material->path == core::ShadingPath::TextureObject;
   }
   uint64_t lod_computations() const { return lod_computations_; }
+  nlohmann::json details() const { return {{"lod_computations", lod_computations_}}; }
 
   // Waveforms: uv, the texel address (x, y of the bilinear footprint's first texel)
   // and the filtered colour.

@@ -1,0 +1,24 @@
+// The bump fetch's declaration (modules/common/declaration.hpp).
+#include "modules/bump_fetch/bump_fetch_kernel.hpp"
+#include "modules/common/declaration.hpp"
+
+namespace modules {
+
+BlockDecl bump_fetch_block() {
+  const std::vector<std::string> filters(filter_names().begin(), filter_names().begin() + 4);  // no EWA
+  return {"bump_fetch", {24, 1}, false,
+          {{"filter", "trilinear", filters, 0, 0,
+            "texture filter of the bump fetch (nearest and bilinear on the nearest mip level)"},
+           {"probes", 4, {}, 1, 16, "anisotropic filter: trilinear probes along the footprint's major axis"},
+           {"renormalize_mips", true, {}, 0, 0, "normal maps built on load: renormalize the texels of every mip level"}},
+          BumpFetchKernel::needed,
+          [](const BlockContext& ctx) -> std::unique_ptr<Block> {
+            BumpFetchKernel::Options o;
+            o.filter = parse_filter(ctx.string("filter"));
+            o.probes = ctx.integer("probes");
+            o.renormalize_mips = ctx.boolean("renormalize_mips");
+            return std::make_unique<SpanBlock<BumpFetchKernel>>(ctx.scene, o);
+          }};
+}
+
+}  // namespace modules

@@ -1,0 +1,44 @@
+#include "modules/common/declaration.hpp"
+
+#include <stdexcept>
+
+namespace modules {
+
+std::vector<std::string> PipelineDecl::block_names() const {
+  std::vector<std::string> names;
+  for (const auto& pass : passes)
+    for (const auto& b : pass.blocks) names.push_back(b.name);
+  return names;
+}
+
+std::vector<core::SettingSpec> PipelineDecl::all_settings() const {
+  std::vector<core::SettingSpec> all = settings;
+  for (const auto& pass : passes)
+    for (const auto& b : pass.blocks) {
+      all.push_back({b.name + ".latency", b.timing.latency, {}, 0, 1000000, "latency in cycles"});
+      all.push_back({b.name + ".ii", b.timing.ii, {}, 1, 1000000, "cycles per unit of work"});
+      if (b.formatted)
+        all.push_back({b.name + ".format", "default", {}, 0, 0,
+                       "number format of the block's datapath (default: pipeline.number_format)", true});
+      for (core::SettingSpec s : b.settings) {
+        s.key = b.name + "." + s.key;
+        all.push_back(std::move(s));
+      }
+    }
+  return all;
+}
+
+void PipelineDecl::insert_after(const std::string& after, BlockDecl block) {
+  const auto names = block_names();
+  if (std::find(names.begin(), names.end(), block.name) != names.end())
+    throw std::invalid_argument("the pipeline has a block named " + block.name + " already");
+  for (auto& pass : passes)
+    for (auto it = pass.blocks.begin(); it != pass.blocks.end(); ++it)
+      if (it->name == after) {
+        pass.blocks.insert(it + 1, std::move(block));
+        return;
+      }
+  throw std::invalid_argument("the pipeline has no block named " + after);
+}
+
+}  // namespace modules

@@ -1,0 +1,143 @@
+#pragma once
+// The pipeline as data (docs/development.md, "Adding a block"): each block declares
+// itself once, beside its kernel, as a BlockDecl — its name, its settings, its default
+// timing, when a scene needs it and how its kernel is built — and the pipeline is an
+// ordered list of passes of such declarations (modules/pipeline/pipeline.hpp,
+// standard_pipeline()). Both engines, the settings table, the statistics and the trace
+// attachments are derived from that list; nothing else names a block.
+#include <functional>
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "core/pipeline_config.hpp"
+#include "core/scene.hpp"
+#include "modules/common/block.hpp"
+#include "modules/common/packet.hpp"
+#include "modules/common/report.hpp"
+
+namespace modules {
+
+// What a block is built from: the scene and every resolved setting. Reading its own
+// settings needs no prefix (`ctx.string("mode")` is `<block>.mode`).
+struct BlockContext {
+  const core::Scene& scene;
+  const core::Settings& settings;
+  const std::string& name;
+
+  const std::string& string(const std::string& key) const { return settings.string(name + "." + key); }
+  int integer(const std::string& key) const { return settings.integer(name + "." + key); }
+  double number(const std::string& key) const { return settings.number(name + "." + key); }
+  bool boolean(const std::string& key) const { return settings.boolean(name + "." + key); }
+  core::NumberFormat format() const { return settings.format(name); }
+};
+
+// One elaborated block: its kernel, seen by both engines. The loop engine calls the
+// kernel through it; the SystemC engine asks it for the module around the kernel.
+class Block {
+ public:
+  enum class Kind {
+    Source,  // starts a pass: triangles out (setup)
+    Raster,  // triangles in, span packets out
+    Span,    // span packets in and out
+    Frame,   // a pass of its own over the frame, run when the pass before has ended
+  };
+  virtual ~Block() = default;
+  virtual Kind kind() const = 0;
+
+  // The loop engine.
+  virtual void emit_triangles(const std::function<void(const TriangleSetup&)>&) {}  // Source
+  virtual void emit_spans(const TriangleSetup&, const std::function<void(SpanPacket&)>&) {}  // Raster
+  virtual void process(SpanPacket&) {}  // Span: bypass or work
+  // The end of the pass before reaches every block in order: a block may hand data on
+  // in it (the framebuffer its frame), a Frame block runs its pass.
+  virtual void end_pass(PassEnd&) {}
+  virtual void set_progress(std::function<void(double)>) {}  // Source: share of the frame done
+
+  // The SystemC engine: the module around the kernel (a BlockInfo that is an sc_module).
+  virtual std::unique_ptr<BlockInfo> module(const char* name, Timing timing, sc_core::sc_time period) = 0;
+  virtual std::vector<std::string> trace_names() const { return {}; }
+
+  // Statistics, after the run: its operations, and what else it counted into its own
+  // report or the frame's (the framebuffer hands over the frame here).
+  virtual Ops ops() const = 0;
+  virtual void finish(BlockReport&, RenderResult&) {}
+};
+
+struct BlockDecl {
+  std::string name;                         // of its folder, settings, statistics, module
+  Timing timing;                            // defaults of <name>.latency and <name>.ii
+  bool formatted = false;                   // has a <name>.format (a datapath in a number format)
+  std::vector<core::SettingSpec> settings;  // its own, keys without "<name>."
+  std::function<bool(const core::Scene&)> needed;  // empty: always elaborated
+  // Builds the block, e.g. std::make_unique<SpanBlock<K>>(kernel arguments…): the
+  // kernel is built in place (kernels may point into themselves).
+  std::function<std::unique_ptr<Block>(const BlockContext&)> make;
+};
+
+// The span kernels' optional reports, found by their signatures.
+template <class K, class = void> struct has_ranges : std::false_type {};
+template <class K> struct has_ranges<K, std::void_t<decltype(std::declval<const K&>().ranges())>> : std::true_type {};
+template <class K, class = void> struct has_numbers : std::false_type {};
+template <class K> struct has_numbers<K, std::void_t<decltype(std::declval<const K&>().numbers())>> : std::true_type {};
+template <class K, class = void> struct has_details : std::false_type {};
+template <class K> struct has_details<K, std::void_t<decltype(std::declval<const K&>().details())>> : std::true_type {};
+template <class K, class = void> struct has_precompute : std::false_type {};
+template <class K>
+struct has_precompute<K, std::void_t<decltype(std::declval<const K&>().precompute_seconds())>> : std::true_type {};
+
+// A span block (Stage<K> in SystemC): K has process, bypass, work, ops, trace_names,
+// trace and set_capture (modules/README.md), and may have ranges(), numbers(),
+// details() (JSON), precompute_seconds() and end_pass(PassEnd&), which are reported
+// or called where present.
+template <class K>
+class SpanBlock : public Block {
+ public:
+  template <class... Args>
+  explicit SpanBlock(Args&&... args) : kernel(std::forward<Args>(args)...) {}
+  K kernel;
+
+  Kind kind() const override { return Kind::Span; }
+  void process(SpanPacket& p) override {
+    if (!kernel.bypass(p)) kernel.process(p);
+  }
+  void end_pass(PassEnd& e) override {
+    if constexpr (has_end_pass<K>::value) kernel.end_pass(e);
+  }
+  std::unique_ptr<BlockInfo> module(const char* name, Timing timing, sc_core::sc_time period) override {
+    return std::make_unique<Stage<K>>(name, kernel, timing, period);
+  }
+  std::vector<std::string> trace_names() const override { return K::trace_names(); }
+  Ops ops() const override { return kernel.ops(); }
+  void finish(BlockReport& b, RenderResult& r) override {
+    if constexpr (has_ranges<K>::value) b.ranges = kernel.ranges();
+    if constexpr (has_numbers<K>::value) b.numbers = kernel.numbers();
+    if constexpr (has_details<K>::value) b.details = kernel.details();
+    if constexpr (has_precompute<K>::value) r.precompute_s += kernel.precompute_seconds();
+  }
+};
+
+// A pass: blocks joined in a chain. The first pass starts with a Source block; a later
+// one is started by the end of the pass before (PassEnd), which every block forwards.
+struct PassDecl {
+  std::string name;
+  std::vector<BlockDecl> blocks;
+};
+
+struct PipelineDecl {
+  std::vector<core::SettingSpec> settings;  // the pipeline's own (clock_mhz, number_format, …)
+  std::vector<PassDecl> passes;             // in order
+
+  // Every block's name, in pipeline order.
+  std::vector<std::string> block_names() const;
+  // The settings table: the pipeline's own, then each block's (latency, ii, format and
+  // its own, named <block>.<key>).
+  std::vector<core::SettingSpec> all_settings() const;
+  // Adds `block` right after the block named `after` (a testbench's or a user's block);
+  // throws std::invalid_argument if there is none of that name or the name is taken.
+  void insert_after(const std::string& after, BlockDecl block);
+};
+
+}  // namespace modules

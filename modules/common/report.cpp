@@ -1,0 +1,87 @@
+#include "modules/common/report.hpp"
+
+#include <algorithm>
+
+namespace modules {
+
+const BlockReport* RenderResult::bottleneck() const {
+  const BlockReport* best = nullptr;
+  for (const auto& b : blocks)
+    if (!best || b.stats.busy_cycles > best->stats.busy_cycles) best = &b;
+  return best;
+}
+
+Ops RenderResult::total_ops() const {
+  Ops o;
+  for (const auto& b : blocks) o += b.stats.ops;
+  return o;
+}
+
+nlohmann::json RenderResult::stats_json() const {
+  nlohmann::json j;
+  j["engine"] = engine;
+  j["wall_s"] = wall_s;
+  j["clock_mhz"] = clock_mhz;
+  j["frame_cycles"] = frame_cycles;
+  j["sim_time_s"] = double(frame_cycles) / (clock_mhz * 1e6);
+  j["bottleneck"] = frame_cycles > 0 && bottleneck() ? nlohmann::json(bottleneck()->name) : nlohmann::json();
+  j["precompute_s"] = precompute_s;
+  j["nonfinite_replaced"] = nonfinite_replaced;
+  j["elaborated"] = nlohmann::json::array();
+  for (const auto& b : blocks) j["elaborated"].push_back(b.name);
+  j["triangles"] = {{"in", triangles_in}, {"drawn", triangles_drawn}};
+  j["pixels"] = {{"walked", pixels_walked}, {"hidden", pixels_hidden}, {"shaded", pixels_shaded}};
+  j["blocks"] = nlohmann::json::object();
+  // Every block's non-finite outputs and number events, summed (docs/numerical-stability.md).
+  nlohmann::json numbers = {{"nonfinite", uint64_t(0)}, {"overflows", uint64_t(0)}, {"invalid", uint64_t(0)}};
+  for (const auto& b : blocks) {
+    nlohmann::json bj = {{"packets", b.stats.packets},     {"pixels", b.stats.pixels},
+                         {"bypassed", b.stats.bypassed},   {"busy_cycles", b.stats.busy_cycles},
+                         {"latency", b.timing.latency},    {"ii", b.timing.ii},
+                         {"ops", b.stats.ops.to_json()}};
+    bj["utilization"] = frame_cycles > 0 ? double(b.stats.busy_cycles) / double(frame_cycles) : 0.0;
+    if (!b.ranges.empty()) bj["ranges"] = to_json(b.ranges);
+    if (!b.details.is_null()) bj["details"] = b.details;
+    if (b.numbers) {
+      bj["numbers"] = {{"format", b.numbers->format},
+                       {"nonfinite", b.numbers->counted ? nlohmann::json(b.numbers->nonfinite) : nlohmann::json()},
+                       {"overflows", b.numbers->events.overflows}, {"invalid", b.numbers->events.invalid}};
+      numbers["nonfinite"] = numbers["nonfinite"].get<uint64_t>() + b.numbers->nonfinite;
+      numbers["overflows"] = numbers["overflows"].get<uint64_t>() + b.numbers->events.overflows;
+      numbers["invalid"] = numbers["invalid"].get<uint64_t>() + b.numbers->events.invalid;
+    }
+    j["blocks"][b.name] = bj;
+  }
+  j["numbers"] = numbers;
+  if (bin_cycles > 0 && frame_cycles > 0) {
+    // Utilization over time: each block's busy share of every bin, and the busiest
+    // block per bin. No back-pressure in the timing model, so no stalls: a block is
+    // busy or waiting for input (a bubble).
+    nlohmann::json over_time = {{"bin_cycles", bin_cycles}, {"blocks", nlohmann::json::object()}};
+    const size_t bins = size_t((frame_cycles + bin_cycles - 1) / bin_cycles);
+    std::vector<std::pair<uint64_t, std::string>> busiest(bins, {0, ""});
+    for (const auto& b : blocks) {
+      std::vector<double> share(bins, 0.0);
+      for (size_t i = 0; i < bins && i < b.busy_per_bin.size(); ++i) {
+        const uint64_t length = std::min<uint64_t>(bin_cycles, frame_cycles - i * bin_cycles);  // last one partial
+        share[i] = double(b.busy_per_bin[i]) / double(length);
+        if (b.busy_per_bin[i] > busiest[i].first) busiest[i] = {b.busy_per_bin[i], b.name};
+      }
+      over_time["blocks"][b.name] = share;
+      j["blocks"][b.name]["idle_cycles"] = frame_cycles - b.stats.busy_cycles;
+    }
+    nlohmann::json names = nlohmann::json::array();
+    for (const auto& [busy, name] : busiest) names.push_back(busy > 0 ? nlohmann::json(name) : nlohmann::json());
+    over_time["bottleneck"] = names;
+    j["utilization_over_time"] = over_time;
+  }
+  const nlohmann::json total = total_ops().to_json();
+  j["ops"] = total;
+  nlohmann::json per_pixel;
+  const double n = pixels_shaded > 0 ? double(pixels_shaded) : 1.0;
+  for (const auto& [kind, count] : total.items()) per_pixel[kind] = count.get<double>() / n;
+  j["ops_per_shaded_pixel"] = per_pixel;
+  return j;
+}
+
+}  // namespace modules

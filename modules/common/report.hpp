@@ -1,0 +1,57 @@
+#pragma once
+// What a render reports: per block and for the frame (the stats JSON, docs/pipeline.md).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/frame.hpp"
+#include "modules/common/number.hpp"
+#include "modules/common/ops.hpp"
+#include "modules/common/range.hpp"
+
+namespace modules {
+
+struct Timing {
+  uint64_t latency = 1;  // cycles from a packet's start to its first result downstream
+  uint64_t ii = 1;       // cycles per unit of work (initiation interval)
+};
+
+struct BlockStats {
+  uint64_t packets = 0, pixels = 0, busy_cycles = 0, bypassed = 0;
+  Ops ops;
+};
+
+struct BlockReport {
+  std::string name;
+  BlockStats stats;
+  Timing timing;
+  uint64_t free_cycle = 0;  // when it finished its last work
+  std::vector<uint64_t> busy_per_bin;  // busy cycles per Inspect::bin_cycles
+  Ranges ranges;                       // of the block's datapaths (docs/pipeline.md)
+  nlohmann::json details;              // block-specific figures (texel_project)
+  std::optional<NumberStats> numbers;  // its number format and what its numbers met
+};
+
+struct RenderResult {
+  core::Frame frame;
+  std::string engine;  // "systemc" or "loop"
+  double wall_s = 0;
+  double clock_mhz = 0;
+  uint64_t frame_cycles = 0;  // 0 for the loop, which has no timing model
+  uint64_t triangles_in = 0, triangles_drawn = 0;
+  uint64_t pixels_walked = 0, pixels_hidden = 0, pixels_shaded = 0;
+  std::vector<BlockReport> blocks;  // elaborated blocks, in pipeline order
+  uint64_t bin_cycles = 0;          // of the blocks' busy_per_bin (0: none)
+  uint64_t trace_records = 0;       // pixels written to the VCD, all blocks
+  double precompute_s = 0;          // maps built when the pipeline was (not in wall_s)
+  uint64_t nonfinite_replaced = 0;   // NaN or infinite colour, normal, depth or specular values that reached the framebuffer (replaced)
+
+  const BlockReport* bottleneck() const;  // the block with the most busy cycles
+  Ops total_ops() const;
+  nlohmann::json stats_json() const;
+};
+
+}  // namespace modules

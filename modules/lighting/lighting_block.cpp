@@ -1,0 +1,13 @@
+// The lighting block's declaration (modules/common/declaration.hpp).
+#include "modules/common/declaration.hpp"
+#include "modules/lighting/lighting_kernel.hpp"
+
+namespace modules {
+
+BlockDecl lighting_block() {
+  return {"lighting", {10, 1}, true, {}, {}, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
+            return std::make_unique<SpanBlock<LightingKernel>>(ctx.scene, ctx.format());
+          }};
+}
+
+}  // namespace modules

@@ -1,0 +1,13 @@
+// The parallax tracer's declaration (modules/common/declaration.hpp).
+#include "modules/common/declaration.hpp"
+#include "modules/parallax/parallax_kernel.hpp"
+
+namespace modules {
+
+BlockDecl parallax_block() {
+  return {"parallax", {16, 1}, true, {}, ParallaxKernel::needed, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
+            return std::make_unique<SpanBlock<ParallaxKernel>>(ctx.scene, ctx.format());
+          }};
+}
+
+}  // namespace modules

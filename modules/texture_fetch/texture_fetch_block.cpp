@@ -1,0 +1,20 @@
+// The colour texture fetch's declaration (modules/common/declaration.hpp).
+#include "modules/common/declaration.hpp"
+#include "modules/texture_fetch/texture_fetch_kernel.hpp"
+
+namespace modules {
+
+BlockDecl texture_fetch_block() {
+  return {"texture_fetch", {8, 1}, false,
+          {{"filter", "trilinear", filter_names(), 0, 0, "screen-space filter of texture-screen materials"},
+           {"probes", 4, {}, 1, 16, "anisotropic filter: trilinear probes along the footprint's major axis"}},
+          TextureFetchKernel::needed,
+          [](const BlockContext& ctx) -> std::unique_ptr<Block> {
+            TextureFetchKernel::Options o;
+            o.filter = parse_filter(ctx.string("filter"));
+            o.probes = ctx.integer("probes");
+            return std::make_unique<SpanBlock<TextureFetchKernel>>(ctx.scene, o);
+          }};
+}
+
+}  // namespace modules
