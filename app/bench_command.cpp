@@ -7,9 +7,9 @@
 #include <iostream>
 
 #include "app/commands.hpp"
-#include "modules/pipeline/pipeline.hpp"
+#include "shadetlm/modules/pipeline/pipeline.hpp"
 
-namespace app {
+namespace shadetlm::app {
 
 Command add_bench_command(CLI::App& app) {
   auto opt = std::make_shared<SceneOptions>();
@@ -34,4 +34,4 @@ Command add_bench_command(CLI::App& app) {
           }};
 }
 
-}  // namespace app
+}  // namespace shadetlm::app

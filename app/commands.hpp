@@ -8,10 +8,10 @@
 
 #include <CLI/CLI.hpp>
 
-#include "core/frame.hpp"
-#include "core/scene.hpp"
+#include "shadetlm/core/frame.hpp"
+#include "shadetlm/core/scene.hpp"
 
-namespace app {
+namespace shadetlm::app {
 
 struct Command {
   CLI::App* cli;            // the subcommand's options
@@ -46,4 +46,4 @@ void describe(core::Frame& frame, const core::Scene& scene, const SceneOptions& 
 void write_frame(const core::Frame& frame, const std::string& exr, const std::string& png, const std::string& heat = "",
                  float heat_max = 32);
 
-}  // namespace app
+}  // namespace shadetlm::app

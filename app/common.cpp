@@ -1,11 +1,11 @@
 #include <filesystem>
 
 #include "app/commands.hpp"
-#include "core/input_error.hpp"
-#include "core/version.hpp"
-#include "modules/pipeline/pipeline.hpp"
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/version.hpp"
+#include "shadetlm/modules/pipeline/pipeline.hpp"
 
-namespace app {
+namespace shadetlm::app {
 
 void SceneOptions::add_to(CLI::App& cmd) {
   cmd.add_option("scene", scene, "scene file (JSON, docs/scene-format.md); the built-in demo if omitted");
@@ -67,4 +67,4 @@ void write_frame(const core::Frame& frame, const std::string& exr, const std::st
   for (const auto& [tmp, path] : written) core::rename_into_place(tmp, path);
 }
 
-}  // namespace app
+}  // namespace shadetlm::app

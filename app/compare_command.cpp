@@ -5,9 +5,9 @@
 #include <iostream>
 
 #include "app/commands.hpp"
-#include "core/compare.hpp"
+#include "shadetlm/core/compare.hpp"
 
-namespace app {
+namespace shadetlm::app {
 
 Command add_compare_command(CLI::App& app) {
   struct Options {
@@ -59,4 +59,4 @@ Command add_compare_command(CLI::App& app) {
           }};
 }
 
-}  // namespace app
+}  // namespace shadetlm::app

@@ -5,8 +5,10 @@
 #include <systemc>
 
 #include "app/commands.hpp"
-#include "core/input_error.hpp"
-#include "core/version.hpp"
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/version.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 // libsystemc calls sc_main from its own main(); shadetlm has its own main and
 // starts the simulation itself (modules::render_systemc), so this is never run.

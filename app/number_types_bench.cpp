@@ -13,7 +13,9 @@
 
 #include <systemc>
 
-#include "modules/common/number.hpp"
+#include "shadetlm/modules/common/number.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace {
 

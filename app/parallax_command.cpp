@@ -14,13 +14,13 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
-#include "core/input_error.hpp"
-#include "core/parallax_map.hpp"
-#include "core/version.hpp"
-#include "modules/parallax/parallax_kernel.hpp"
-#include "reference/parallax.hpp"
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/parallax_map.hpp"
+#include "shadetlm/core/version.hpp"
+#include "shadetlm/modules/parallax/parallax_kernel.hpp"
+#include "shadetlm/reference/parallax.hpp"
 
-namespace app {
+namespace shadetlm::app {
 
 namespace {
 
@@ -281,4 +281,4 @@ Command add_parallax_bench_command(CLI::App& app) {
           }};
 }
 
-}  // namespace app
+}  // namespace shadetlm::app

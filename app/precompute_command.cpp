@@ -9,12 +9,12 @@
 #include <iostream>
 
 #include "app/commands.hpp"
-#include "core/bump_map.hpp"
-#include "core/input_error.hpp"
-#include "core/mesh_io.hpp"
-#include "core/version.hpp"
+#include "shadetlm/core/bump_map.hpp"
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/mesh_io.hpp"
+#include "shadetlm/core/version.hpp"
 
-namespace app {
+namespace shadetlm::app {
 
 namespace {
 
@@ -97,4 +97,4 @@ Command add_precompute_command(CLI::App& app) {
           }};
 }
 
-}  // namespace app
+}  // namespace shadetlm::app

@@ -3,9 +3,9 @@
 #include <iostream>
 
 #include "app/commands.hpp"
-#include "reference/reference.hpp"
+#include "shadetlm/reference/reference.hpp"
 
-namespace app {
+namespace shadetlm::app {
 
 Command add_reference_command(CLI::App& app) {
   struct Options {
@@ -36,4 +36,4 @@ Command add_reference_command(CLI::App& app) {
           }};
 }
 
-}  // namespace app
+}  // namespace shadetlm::app

@@ -12,12 +12,12 @@
 #include <unistd.h>
 
 #include "app/commands.hpp"
-#include "core/compare.hpp"
-#include "core/input_error.hpp"
-#include "modules/pipeline/pipeline.hpp"
-#include "reference/reference.hpp"
+#include "shadetlm/core/compare.hpp"
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/modules/pipeline/pipeline.hpp"
+#include "shadetlm/reference/reference.hpp"
 
-namespace app {
+namespace shadetlm::app {
 
 namespace {
 
@@ -235,4 +235,4 @@ Command add_render_command(CLI::App& app) {
           }};
 }
 
-}  // namespace app
+}  // namespace shadetlm::app

@@ -1,4 +1,4 @@
-#include "core/bump_map.hpp"
+#include "shadetlm/core/bump_map.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,10 +10,10 @@
 #include <ImfStringAttribute.h>
 #include <ImfTiledOutputFile.h>
 
-#include "core/frame.hpp"
-#include "core/input_error.hpp"
+#include "shadetlm/core/frame.hpp"
+#include "shadetlm/core/input_error.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 namespace {
 
@@ -213,4 +213,4 @@ void write_mip_chain(const std::string& path, const Texture& base, const std::ve
   });
 }
 
-}  // namespace core
+}  // namespace shadetlm::core

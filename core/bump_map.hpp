@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh.hpp"
-#include "core/texture.hpp"
+#include "shadetlm/core/mesh.hpp"
+#include "shadetlm/core/texture.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 // Checks a texture for use as a height map (power-of-two sides, finite values) and
 // throws InputError naming `file` and `field` if it cannot be one.
@@ -53,4 +53,4 @@ std::vector<Texture> mip_levels(const Texture& base, bool renormalize);
 void write_mip_chain(const std::string& path, const Texture& base, const std::vector<Texture>& levels,
                      const std::vector<std::pair<std::string, std::string>>& attributes);
 
-}  // namespace core
+}  // namespace shadetlm::core

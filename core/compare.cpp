@@ -1,4 +1,4 @@
-#include "core/compare.hpp"
+#include "shadetlm/core/compare.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <stb_image_write.h>
 
-namespace core {
+namespace shadetlm::core {
 
 namespace {
 const std::vector<std::pair<std::string, std::vector<std::string>>>& layer_table() {
@@ -175,4 +175,4 @@ std::string CompareResult::verdict() const {
   return s;
 }
 
-}  // namespace core
+}  // namespace shadetlm::core

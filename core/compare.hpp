@@ -12,9 +12,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/frame.hpp"
+#include "shadetlm/core/frame.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 struct CompareOptions {
   std::vector<std::string> layers;  // "RGB", "Z", "N"; empty: every layer either frame has
@@ -58,4 +58,4 @@ Frame difference_frame(const Frame& a, const Frame& b, const CompareResult& resu
 // blue, cyan, green, yellow, red at 1e-1 and above; pixels over `fail` are never black).
 void write_comparison_images(const std::string& prefix, const Frame& a, const Frame& b, double fail);
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -1,9 +1,9 @@
-#include "core/coverage.hpp"
+#include "shadetlm/core/coverage.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace core {
+namespace shadetlm::core {
 
 namespace {
 // Signed distances of a clip-space point to the six clipping planes (inside ≥ 0).
@@ -137,4 +137,4 @@ bool snap_triangle(const glm::dvec2& s0, const glm::dvec2& s1, const glm::dvec2&
   return true;
 }
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -18,7 +18,7 @@
 
 #include <glm/glm.hpp>
 
-namespace core {
+namespace shadetlm::core {
 
 constexpr int kSubpixelBits = 8;
 constexpr int64_t kSubpixelScale = int64_t(1) << kSubpixelBits;
@@ -92,4 +92,4 @@ inline int64_t round_half_away(double v) {
 bool snap_triangle(const glm::dvec2& s0, const glm::dvec2& s1, const glm::dvec2& s2, int width,
                    int height, SnappedTriangle& out);
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -1,4 +1,4 @@
-#include "core/frame.hpp"
+#include "shadetlm/core/frame.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -16,10 +16,10 @@
 #include <ImfStringAttribute.h>
 #include <stb_image_write.h>
 
-#include "core/input_error.hpp"
-#include "core/texture.hpp"
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/texture.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 std::vector<float>& Frame::add(const std::string& name, float fill) {
   for (auto& c : channels)
@@ -144,4 +144,4 @@ void write_heat_map_png(const std::string& path, const Frame& frame, const std::
   });
 }
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace core {
+namespace shadetlm::core {
 
 struct Channel {
   std::string name;
@@ -63,4 +63,4 @@ void write_atomically(const std::string& path, F write) {
   rename_into_place(tmp, path);
 }
 
-}  // namespace core
+}  // namespace shadetlm::core

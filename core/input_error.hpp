@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace core {
+namespace shadetlm::core {
 
 class InputError : public std::runtime_error {
  public:
@@ -24,4 +24,4 @@ class InputError : public std::runtime_error {
   std::string file_, field_;
 };
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -1,10 +1,10 @@
-#include "core/json_reader.hpp"
+#include "shadetlm/core/json_reader.hpp"
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-namespace core {
+namespace shadetlm::core {
 
 namespace {
 std::string type_name(const json& v) {
@@ -256,4 +256,4 @@ json parse_json_file(const std::string& file) {
   return parse_json_text(ss.str(), file);
 }
 
-}  // namespace core
+}  // namespace shadetlm::core

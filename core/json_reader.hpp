@@ -11,9 +11,9 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
-#include "core/input_error.hpp"
+#include "shadetlm/core/input_error.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 using json = nlohmann::json;
 
@@ -65,4 +65,4 @@ class JsonReader {
 json parse_json_file(const std::string& file);
 json parse_json_text(const std::string& text, const std::string& file);
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -1,8 +1,8 @@
-#include "core/mesh.hpp"
+#include "shadetlm/core/mesh.hpp"
 
 #include <cmath>
 
-namespace core {
+namespace shadetlm::core {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
@@ -111,4 +111,4 @@ Mesh make_cube(double size) {
   return m;
 }
 
-}  // namespace core
+}  // namespace shadetlm::core

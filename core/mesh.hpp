@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-namespace core {
+namespace shadetlm::core {
 
 struct Mesh {
   std::vector<glm::dvec3> positions;
@@ -38,4 +38,4 @@ Mesh make_cube(double size);
 // A unit tangent orthogonal to n, for vertices that have no uv parameterization.
 glm::dvec3 any_tangent(glm::dvec3 n);
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -1,4 +1,4 @@
-#include "core/mesh_io.hpp"
+#include "shadetlm/core/mesh_io.hpp"
 
 #include <cmath>
 
@@ -6,9 +6,9 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include "core/input_error.hpp"
+#include "shadetlm/core/input_error.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 Mesh load_mesh_file(const std::string& path) {
   Assimp::Importer importer;
@@ -74,4 +74,4 @@ Mesh load_mesh_file(const std::string& path) {
   return out;
 }
 
-}  // namespace core
+}  // namespace shadetlm::core

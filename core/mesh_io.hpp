@@ -1,9 +1,9 @@
 #pragma once
 #include <string>
 
-#include "core/mesh.hpp"
+#include "shadetlm/core/mesh.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 // Loads every triangle of a mesh file through assimp (OBJ, PLY, glTF, 3DS, STL, …),
 // with the node transforms applied, into one mesh. Normals are generated where the
@@ -11,4 +11,4 @@ namespace core {
 // Throws InputError naming the file.
 Mesh load_mesh_file(const std::string& path);
 
-}  // namespace core
+}  // namespace shadetlm::core

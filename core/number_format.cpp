@@ -1,8 +1,8 @@
-#include "core/number_format.hpp"
+#include "shadetlm/core/number_format.hpp"
 
 #include <stdexcept>
 
-namespace core {
+namespace shadetlm::core {
 
 NumberFormat NumberFormat::parse(const std::string& name) {
   if (name == "float32") return {};
@@ -35,4 +35,4 @@ std::string NumberFormat::name() const {
   }
 }
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -12,7 +12,7 @@
 // "default" (a block's setting only) takes pipeline.number_format.
 #include <string>
 
-namespace core {
+namespace shadetlm::core {
 
 struct NumberFormat {
   enum class Kind { Float32, Float16, Fixed };
@@ -33,4 +33,4 @@ struct NumberFormat {
   bool operator!=(const NumberFormat& o) const { return !(*this == o); }
 };
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -1,14 +1,14 @@
-#include "core/parallax_map.hpp"
+#include "shadetlm/core/parallax_map.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <limits>
 
-#include "core/frame.hpp"
-#include "core/input_error.hpp"
+#include "shadetlm/core/frame.hpp"
+#include "shadetlm/core/input_error.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 HeightField height_field(const Texture& map, const std::string& file, const std::string& field) {
   if (map.width <= 0 || map.height <= 0 || map.texels.size() != size_t(map.width) * size_t(map.height))
@@ -363,4 +363,4 @@ ConeMap read_cone_map(const std::string& path) {
   return m;
 }
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "core/texture.hpp"
+#include "shadetlm/core/texture.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 struct HeightField {
   int width = 0, height = 0;
@@ -197,4 +197,4 @@ VolumeMap read_volume_map(const std::string& path, const std::string& kind);
 void write_cone_map(const std::string& path, const ConeMap& map);
 ConeMap read_cone_map(const std::string& path);
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -1,12 +1,12 @@
-#include "core/pipeline_config.hpp"
+#include "shadetlm/core/pipeline_config.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
-#include "core/input_error.hpp"
-#include "core/number_format.hpp"
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/number_format.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 using json = nlohmann::json;
 
@@ -115,4 +115,4 @@ json Settings::resolved() const {
   return out;
 }
 
-}  // namespace core
+}  // namespace shadetlm::core

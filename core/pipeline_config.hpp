@@ -10,9 +10,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/number_format.hpp"
+#include "shadetlm/core/number_format.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 struct SettingSpec {
   std::string key;             // "normalize.mode" (a block declares "mode": its name goes in front)
@@ -61,4 +61,4 @@ class PipelineConfig {
   std::string file_;
 };
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -1,4 +1,4 @@
-#include "core/scene.hpp"
+#include "shadetlm/core/scene.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -9,11 +9,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/bump_map.hpp"
-#include "core/json_reader.hpp"
-#include "core/mesh_io.hpp"
+#include "shadetlm/core/bump_map.hpp"
+#include "shadetlm/core/json_reader.hpp"
+#include "shadetlm/core/mesh_io.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 namespace fs = std::filesystem;
 
@@ -504,4 +504,4 @@ Scene load_demo_scene(const std::vector<std::string>& overrides) {
   return load_scene_text(demo_scene_text(), "<built-in demo>", ".", overrides);
 }
 
-}  // namespace core
+}  // namespace shadetlm::core

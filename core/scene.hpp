@@ -8,11 +8,11 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
-#include "core/mesh.hpp"
-#include "core/pipeline_config.hpp"
-#include "core/texture.hpp"
+#include "shadetlm/core/mesh.hpp"
+#include "shadetlm/core/pipeline_config.hpp"
+#include "shadetlm/core/texture.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 struct Camera {
   glm::dvec3 position{0, 0, 5}, target{0, 0, 0}, up{0, 1, 0};
@@ -136,4 +136,4 @@ const std::string& demo_scene_text();
 void apply_override(nlohmann::json& doc, const std::string& assignment,
                     const std::string& file);
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -1,4 +1,4 @@
-#include "core/texture.hpp"
+#include "shadetlm/core/texture.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +11,9 @@
 #include <ImfTiledInputFile.h>
 #include <stb_image.h>
 
-#include "core/input_error.hpp"
+#include "shadetlm/core/input_error.hpp"
 
-namespace core {
+namespace shadetlm::core {
 
 namespace {
 int wrap_index(int i, int n, Wrap w) {
@@ -288,4 +288,4 @@ Texture load_texture_file(const std::string& path) {
   return t;
 }
 
-}  // namespace core
+}  // namespace shadetlm::core

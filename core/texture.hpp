@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-namespace core {
+namespace shadetlm::core {
 
 enum class Wrap { Repeat, Clamp };
 
@@ -51,4 +51,4 @@ Texture make_steps(const ProceduralParams& p);         // value noise quantized 
 // Image files: PNG (8 or 16 bit, through stb) and EXR (any of R, G, B, A, Y).
 Texture load_texture_file(const std::string& path);
 
-}  // namespace core
+}  // namespace shadetlm::core

@@ -1,9 +1,9 @@
-#include "reference/parallax.hpp"
+#include "shadetlm/reference/parallax.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace reference {
+namespace shadetlm::reference {
 
 namespace {
 
@@ -68,4 +68,4 @@ ParallaxHit parallax_hit(const core::Texture& map, glm::dvec2 uv0, glm::dvec3 d,
   return r;
 }
 
-}  // namespace reference
+}  // namespace shadetlm::reference

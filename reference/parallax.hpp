@@ -6,9 +6,9 @@
 // texel.
 #include <glm/glm.hpp>
 
-#include "core/texture.hpp"
+#include "shadetlm/core/texture.hpp"
 
-namespace reference {
+namespace shadetlm::reference {
 
 // The relief: height h(u, v) in [0, 1] (the map's first channel, clamped, bilinear with
 // the map's wrap), the base polygon at h = 1, the deepest point h = 0, `depth` uv units
@@ -22,4 +22,4 @@ struct ParallaxHit {
 };
 ParallaxHit parallax_hit(const core::Texture& height_map, glm::dvec2 uv0, glm::dvec3 d, double depth);
 
-}  // namespace reference
+}  // namespace shadetlm::reference

@@ -1,13 +1,13 @@
-#include "reference/reference.hpp"
+#include "shadetlm/reference/reference.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "core/coverage.hpp"
-#include "reference/parallax.hpp"
+#include "shadetlm/core/coverage.hpp"
+#include "shadetlm/reference/parallax.hpp"
 
-namespace reference {
+namespace shadetlm::reference {
 
 glm::dvec3 shade(const core::Scene& scene, const core::Material& m, const glm::dvec3& P,
                  const glm::dvec3& N, const glm::dvec3& tex) {
@@ -268,4 +268,4 @@ core::Frame to_frame(const Image& img) {
   return f;
 }
 
-}  // namespace reference
+}  // namespace shadetlm::reference

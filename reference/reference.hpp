@@ -19,10 +19,10 @@
 
 #include <glm/glm.hpp>
 
-#include "core/frame.hpp"
-#include "core/scene.hpp"
+#include "shadetlm/core/frame.hpp"
+#include "shadetlm/core/scene.hpp"
 
-namespace reference {
+namespace shadetlm::reference {
 
 struct Image {
   int width = 0, height = 0;
@@ -46,4 +46,4 @@ Image render(const core::Scene& scene);
 // The image as an EXR frame (float channels R, G, B, A, Z, N.X, N.Y, N.Z).
 core::Frame to_frame(const Image& image);
 
-}  // namespace reference
+}  // namespace shadetlm::reference

@@ -45,8 +45,8 @@ echo "== instructions per shaded pixel (callgrind) =="
 # The render functions by their full signatures: a wildcard would also match the loop's
 # lambdas (render_loop(...)::{lambda...}), and callgrind toggles collection off again on
 # entering them.
-declare -A render_fn=([systemc]='modules::run_systemc(modules::Kernels&, modules::Options const&, modules::Inspect const&)'
-                      [loop]='modules::run_loop(modules::Kernels&, modules::Options const&, modules::Inspect const&)')
+declare -A render_fn=([systemc]='shadetlm::modules::run_systemc(shadetlm::modules::Pipeline&, shadetlm::modules::Inspect const&)'
+                      [loop]='shadetlm::modules::run_loop(shadetlm::modules::Pipeline&, shadetlm::modules::Inspect const&)')
 count() {  # count LABEL SCENE RESOLUTION
   local label=$1 file=$2 res=$3
   for engine in systemc loop; do

@@ -14,7 +14,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "modules/common/block.hpp"
+#include "shadetlm/modules/common/block.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace test {
 

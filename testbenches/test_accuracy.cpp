@@ -7,11 +7,13 @@
 // docs/pipeline.md, not gated.)
 #include <cstring>
 
-#include "core/compare.hpp"
-#include "modules/pipeline/pipeline.hpp"
-#include "reference/reference.hpp"
+#include "shadetlm/core/compare.hpp"
+#include "shadetlm/modules/pipeline/pipeline.hpp"
+#include "shadetlm/reference/reference.hpp"
 #include "systemc_harness.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 TEST_CASE("long rows: a wall receding across 1920 pixels stays within 2^-12", "[accuracy][systemc]") {
   test::route_systemc_reports_to_failures();

@@ -5,14 +5,16 @@
 #include <cstring>
 #include <fstream>
 
-#include "core/bump_map.hpp"
-#include "core/compare.hpp"
-#include "core/frame.hpp"
-#include "modules/common/sampler.hpp"
-#include "modules/pipeline/pipeline.hpp"
-#include "reference/reference.hpp"
+#include "shadetlm/core/bump_map.hpp"
+#include "shadetlm/core/compare.hpp"
+#include "shadetlm/core/frame.hpp"
+#include "shadetlm/modules/common/sampler.hpp"
+#include "shadetlm/modules/pipeline/pipeline.hpp"
+#include "shadetlm/reference/reference.hpp"
 #include "systemc_harness.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace {
 

@@ -1,8 +1,10 @@
 // Frame comparison: metrics, the pass/fail rule, structural mismatches.
 #include <cmath>
 
-#include "core/compare.hpp"
+#include "shadetlm/core/compare.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace {
 core::Frame frame(int w, int h, float value) {

@@ -3,8 +3,10 @@
 // triangle's geometry.
 #include <random>
 
-#include "core/coverage.hpp"
+#include "shadetlm/core/coverage.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace {
 constexpr int W = 61, H = 47;

@@ -4,6 +4,8 @@
 
 #include "test_util.hpp"
 
+using namespace shadetlm;  // core::, modules::, reference::
+
 TEST_CASE("every pipeline setting appears in docs/configuration.md", "[docs]") {
   std::ifstream in(test::source_path("docs/configuration.md"));
   REQUIRE(in);

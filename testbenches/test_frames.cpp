@@ -9,8 +9,10 @@
 #include <ImfFrameBuffer.h>
 #include <half.h>
 
-#include "core/frame.hpp"
+#include "shadetlm/core/frame.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace fs = std::filesystem;
 

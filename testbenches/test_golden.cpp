@@ -20,11 +20,13 @@
 #include <fstream>
 #include <set>
 
-#include "core/compare.hpp"
-#include "modules/pipeline/pipeline.hpp"
-#include "reference/reference.hpp"
+#include "shadetlm/core/compare.hpp"
+#include "shadetlm/modules/pipeline/pipeline.hpp"
+#include "shadetlm/reference/reference.hpp"
 #include "systemc_harness.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace {
 

@@ -8,11 +8,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "modules/normalize/normalize_kernel.hpp"
-#include "modules/pipeline/pipeline.hpp"
+#include "shadetlm/modules/normalize/normalize_kernel.hpp"
+#include "shadetlm/modules/pipeline/pipeline.hpp"
 #include "systemc_harness.hpp"
 #include "test_util.hpp"
 #include "vcd_reader.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 TEST_CASE("the VCD is well formed and its traced values are the frame's", "[inspect][systemc]") {
   test::route_systemc_reports_to_failures();

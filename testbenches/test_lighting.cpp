@@ -10,9 +10,11 @@
 // 2u·|ambient|, and the sum of the terms one u each.
 #include <random>
 
-#include "modules/lighting/lighting_kernel.hpp"
-#include "modules/lighting/power.hpp"
+#include "shadetlm/modules/lighting/lighting_kernel.hpp"
+#include "shadetlm/modules/lighting/power.hpp"
 #include "systemc_harness.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 TEST_CASE("specular_power: x^e within 4 float ulps times 1 + |e log2 x| of the exact power", "[lighting]") {
   // Every 997th float from the smallest subnormal to just past 1 (N·H exceeds 1 only by

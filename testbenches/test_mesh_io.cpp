@@ -6,9 +6,11 @@
 #include <assimp/Exporter.hpp>
 #include <assimp/scene.h>
 
-#include "core/mesh.hpp"
-#include "core/mesh_io.hpp"
+#include "shadetlm/core/mesh.hpp"
+#include "shadetlm/core/mesh_io.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace {
 // An aiScene holding one mesh: positions and normals of `m` (and its uvs when asked).

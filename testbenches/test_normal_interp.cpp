@@ -11,10 +11,12 @@
 // k is at most the steps the walker took for the whole triangle.
 #include <random>
 
-#include "modules/normal_interp/normal_interp_kernel.hpp"
-#include "modules/raster/raster_kernel.hpp"
-#include "modules/setup/setup_kernel.hpp"
+#include "shadetlm/modules/normal_interp/normal_interp_kernel.hpp"
+#include "shadetlm/modules/raster/raster_kernel.hpp"
+#include "shadetlm/modules/setup/setup_kernel.hpp"
 #include "systemc_harness.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace {
 constexpr int W = 256, H = 256;

@@ -4,8 +4,10 @@
 // counted by running the kernel's own code on Counted<float>.
 #include <random>
 
-#include "modules/normalize/normalize_kernel.hpp"
+#include "shadetlm/modules/normalize/normalize_kernel.hpp"
 #include "systemc_harness.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 using modules::NormalizeMode;
 

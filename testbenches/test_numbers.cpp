@@ -6,11 +6,13 @@
 #include <cstring>
 #include <random>
 
-#include "core/compare.hpp"
-#include "modules/common/number.hpp"
-#include "modules/parallax/parallax_kernel.hpp"
-#include "modules/pipeline/pipeline.hpp"
+#include "shadetlm/core/compare.hpp"
+#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/modules/parallax/parallax_kernel.hpp"
+#include "shadetlm/modules/pipeline/pipeline.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 using modules::Fixed;
 using modules::Half;

@@ -3,10 +3,12 @@
 #include <cmath>
 #include <random>
 
-#include "core/parallax_map.hpp"
-#include "modules/parallax/parallax_kernel.hpp"
-#include "reference/parallax.hpp"
+#include "shadetlm/core/parallax_map.hpp"
+#include "shadetlm/modules/parallax/parallax_kernel.hpp"
+#include "shadetlm/reference/parallax.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace {
 

@@ -2,8 +2,10 @@
 // handedness, counter-clockwise fronts, and closed meshes closed.
 #include <map>
 
-#include "core/mesh.hpp"
+#include "shadetlm/core/mesh.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace {
 struct Named {

@@ -2,8 +2,10 @@
 // depth and Blinn-Phong colour computable here by hand, each within 1e-9.
 #include <cmath>
 
-#include "reference/reference.hpp"
+#include "shadetlm/reference/reference.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace {
 constexpr double kTol = 1e-9;

@@ -4,6 +4,8 @@
 
 #include "test_util.hpp"
 
+using namespace shadetlm;  // core::, modules::, reference::
+
 using nlohmann::json;
 
 namespace {

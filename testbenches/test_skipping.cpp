@@ -1,8 +1,10 @@
 // Skipping what a scene does not need (docs/pipeline.md): blocks not elaborated, packets
 // that bypass, the early depth test before the expensive blocks, no packets where
 // nothing is covered.
-#include "modules/pipeline/pipeline.hpp"
+#include "shadetlm/modules/pipeline/pipeline.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace {
 

@@ -3,9 +3,11 @@
 
 #include <stb_image_write.h>
 
-#include "core/frame.hpp"
-#include "core/texture.hpp"
+#include "shadetlm/core/frame.hpp"
+#include "shadetlm/core/texture.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace {
 core::Texture ramp(int w, int h, core::Wrap wrap) {

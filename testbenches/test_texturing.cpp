@@ -5,12 +5,14 @@
 #include <cmath>
 #include <cstring>
 
-#include "core/compare.hpp"
-#include "modules/pipeline/pipeline.hpp"
-#include "modules/texel_project/texel_project_kernel.hpp"
-#include "reference/reference.hpp"
+#include "shadetlm/core/compare.hpp"
+#include "shadetlm/modules/pipeline/pipeline.hpp"
+#include "shadetlm/modules/texel_project/texel_project_kernel.hpp"
+#include "shadetlm/reference/reference.hpp"
 #include "systemc_harness.hpp"
 #include "test_util.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace {
 

@@ -5,10 +5,12 @@
 
 #include <catch2/catch.hpp>
 
-#include "core/frame.hpp"
-#include "core/input_error.hpp"
-#include "core/scene.hpp"
-#include "modules/pipeline/pipeline.hpp"
+#include "shadetlm/core/frame.hpp"
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/scene.hpp"
+#include "shadetlm/modules/pipeline/pipeline.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 namespace test {
 

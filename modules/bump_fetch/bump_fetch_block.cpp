@@ -1,8 +1,8 @@
 // The bump fetch's declaration (modules/common/declaration.hpp).
-#include "modules/bump_fetch/bump_fetch_kernel.hpp"
-#include "modules/common/declaration.hpp"
+#include "shadetlm/modules/bump_fetch/bump_fetch_kernel.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 BlockDecl bump_fetch_block() {
   const std::vector<std::string> filters(filter_names().begin(), filter_names().begin() + 4);  // no EWA
@@ -21,4 +21,4 @@ BlockDecl bump_fetch_block() {
           }};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,11 +1,11 @@
-#include "modules/bump_fetch/bump_fetch_kernel.hpp"
+#include "shadetlm/modules/bump_fetch/bump_fetch_kernel.hpp"
 
 #include <chrono>
 #include <cmath>
 
-#include "core/bump_map.hpp"
+#include "shadetlm/core/bump_map.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 bool BumpFetchKernel::needed(const core::Scene& scene) {
   for (const auto& o : scene.objects)
@@ -87,4 +87,4 @@ void BumpFetchKernel::fetch(SpanPacket& p) {
   for (int c = 0; c < 3; ++c) fetched_range_.add(p.bump[c], p.count);
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -16,12 +16,12 @@
 #include <string>
 #include <vector>
 
-#include "modules/common/number.hpp"
-#include "modules/common/packet.hpp"
-#include "modules/common/range.hpp"
-#include "modules/common/sampler.hpp"
+#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/common/range.hpp"
+#include "shadetlm/modules/common/sampler.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 class BumpFetchKernel {
  public:
@@ -75,4 +75,4 @@ class BumpFetchKernel {
   uint64_t nonfinite_ = 0;
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

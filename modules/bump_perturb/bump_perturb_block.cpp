@@ -1,8 +1,8 @@
 // The bump perturbation's declaration (modules/common/declaration.hpp).
-#include "modules/bump_perturb/bump_perturb_kernel.hpp"
-#include "modules/common/declaration.hpp"
+#include "shadetlm/modules/bump_perturb/bump_perturb_kernel.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 BlockDecl bump_perturb_block() {
   return {"bump_perturb", {8, 1}, false, {}, BumpPerturbKernel::needed,
@@ -13,4 +13,4 @@ BlockDecl bump_perturb_block() {
           }};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,6 +1,6 @@
-#include "modules/bump_perturb/bump_perturb_kernel.hpp"
+#include "shadetlm/modules/bump_perturb/bump_perturb_kernel.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 bool BumpPerturbKernel::needed(const core::Scene& scene) {
   for (const auto& o : scene.objects)
@@ -36,4 +36,4 @@ void BumpPerturbKernel::perturb(SpanPacket& p) {
   if (p.count > 0) ops_ += kOpsPerSpan;
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

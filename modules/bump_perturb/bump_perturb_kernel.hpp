@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "modules/common/number.hpp"
-#include "modules/common/packet.hpp"
-#include "modules/common/range.hpp"
+#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/common/range.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 class BumpPerturbKernel {
  public:
@@ -56,4 +56,4 @@ class BumpPerturbKernel {
   uint64_t nonfinite_ = 0;
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,6 +1,6 @@
-#include "modules/common/block.hpp"
+#include "shadetlm/modules/common/block.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 void Schedule::histogram(uint64_t start, uint64_t busy) {
   for (uint64_t t = start, end = start + busy; t < end;) {
@@ -12,4 +12,4 @@ void Schedule::histogram(uint64_t start, uint64_t busy) {
   }
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -21,13 +21,13 @@
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/simple_target_socket.h>
 
-#include "modules/common/ops.hpp"
-#include "modules/common/packet.hpp"
-#include "modules/common/report.hpp"
-#include "modules/common/timeline.hpp"
-#include "modules/common/trace.hpp"
+#include "shadetlm/modules/common/ops.hpp"
+#include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/common/report.hpp"
+#include "shadetlm/modules/common/timeline.hpp"
+#include "shadetlm/modules/common/trace.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 class FramebufferKernel;
 
@@ -252,4 +252,4 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
   tlm::tlm_fw_transport_if<>* next_ = nullptr;
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

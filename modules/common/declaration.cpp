@@ -1,8 +1,8 @@
-#include "modules/common/declaration.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
 
 #include <stdexcept>
 
-namespace modules {
+namespace shadetlm::modules {
 
 std::vector<std::string> PipelineDecl::block_names() const {
   std::vector<std::string> names;
@@ -41,4 +41,4 @@ void PipelineDecl::insert_after(const std::string& after, BlockDecl block) {
   throw std::invalid_argument("the pipeline has no block named " + after);
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -12,13 +12,13 @@
 #include <utility>
 #include <vector>
 
-#include "core/pipeline_config.hpp"
-#include "core/scene.hpp"
-#include "modules/common/block.hpp"
-#include "modules/common/packet.hpp"
-#include "modules/common/report.hpp"
+#include "shadetlm/core/pipeline_config.hpp"
+#include "shadetlm/core/scene.hpp"
+#include "shadetlm/modules/common/block.hpp"
+#include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/common/report.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 // What a block is built from: the scene and every resolved setting. Reading its own
 // settings needs no prefix (`ctx.string("mode")` is `<block>.mode`).
@@ -140,4 +140,4 @@ struct PipelineDecl {
   void insert_after(const std::string& after, BlockDecl block);
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

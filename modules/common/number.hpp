@@ -25,10 +25,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/number_format.hpp"
-#include "modules/common/ops.hpp"
+#include "shadetlm/core/number_format.hpp"
+#include "shadetlm/modules/common/ops.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 struct NumberEvents {
   uint64_t overflows = 0;  // saturated (fixed) or infinite from finite operands (float16)
@@ -270,4 +270,4 @@ inline bool checks_outputs(const core::NumberFormat& format, bool divides) {
   return divides || format.kind != core::NumberFormat::Kind::Float32;
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

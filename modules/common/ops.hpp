@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace modules {
+namespace shadetlm::modules {
 
 struct Ops {
   uint64_t add = 0, mul = 0, div = 0, sqrt = 0, rsqrt = 0, lut = 0, fetch = 0;
@@ -90,4 +90,4 @@ template <class T> void tally_counted(const Ops& o) { Counted<T>::ops += o; }
 template <class T> T value(T x) { return x; }
 template <class T> T value(Counted<T> x) { return x.v; }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

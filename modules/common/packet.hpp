@@ -5,11 +5,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/coverage.hpp"
-#include "core/scene.hpp"
-#include "modules/common/ops.hpp"
+#include "shadetlm/core/coverage.hpp"
+#include "shadetlm/core/scene.hpp"
+#include "shadetlm/modules/common/ops.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 constexpr int kSpanMax = 64;   // pixels per packet
 constexpr int kMaxLights = 8;  // lights the lighting datapath holds
@@ -98,4 +98,4 @@ struct SpanPacket {
   float spec[3][kSpanMax]; // lighting, texture-object only: the specular term S (C = tex ⊙ D + S later)
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

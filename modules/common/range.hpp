@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace modules {
+namespace shadetlm::modules {
 
 struct ValueRange {
   float lo = std::numeric_limits<float>::infinity(), hi = -std::numeric_limits<float>::infinity();
@@ -42,4 +42,4 @@ inline nlohmann::json to_json(const Ranges& ranges) {
   return j;
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,8 +1,8 @@
-#include "modules/common/report.hpp"
+#include "shadetlm/modules/common/report.hpp"
 
 #include <algorithm>
 
-namespace modules {
+namespace shadetlm::modules {
 
 const BlockReport* RenderResult::bottleneck() const {
   const BlockReport* best = nullptr;
@@ -84,4 +84,4 @@ nlohmann::json RenderResult::stats_json() const {
   return j;
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

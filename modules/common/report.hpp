@@ -7,12 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/frame.hpp"
-#include "modules/common/number.hpp"
-#include "modules/common/ops.hpp"
-#include "modules/common/range.hpp"
+#include "shadetlm/core/frame.hpp"
+#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/modules/common/ops.hpp"
+#include "shadetlm/modules/common/range.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 struct Timing {
   uint64_t latency = 1;  // cycles from a packet's start to its first result downstream
@@ -54,4 +54,4 @@ struct RenderResult {
   nlohmann::json stats_json() const;
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

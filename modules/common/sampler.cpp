@@ -1,10 +1,10 @@
-#include "modules/common/sampler.hpp"
+#include "shadetlm/modules/common/sampler.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-namespace modules {
+namespace shadetlm::modules {
 
 const std::vector<std::string>& filter_names() {
   static const std::vector<std::string> names = {"nearest", "bilinear", "trilinear", "anisotropic", "ewa"};
@@ -223,9 +223,9 @@ void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx
   cycles_ += std::max<uint64_t>(1, (ops.fetch - fetches_before + 3) / 4);
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules
 
-namespace modules {
+namespace shadetlm::modules {
 
 void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map, Sampler& sampler,
                  float out[3][kSpanMax], Ops& ops, ValueRange& uv_range, float (*uv_lod)[kSpanMax]) {
@@ -248,4 +248,4 @@ void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map,
   if (p.count > 0) ops += kOpsSpanUvPerSpan;
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -21,12 +21,12 @@
 #include <string>
 #include <vector>
 
-#include "core/texture.hpp"
-#include "modules/common/ops.hpp"
-#include "modules/common/packet.hpp"
-#include "modules/common/range.hpp"
+#include "shadetlm/core/texture.hpp"
+#include "shadetlm/modules/common/ops.hpp"
+#include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/common/range.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 enum class Filter { Nearest, Bilinear, Trilinear, Anisotropic, Ewa };
 // The filters' names (pipeline.<block>.filter), in the order of Filter.
@@ -87,4 +87,4 @@ void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map,
 constexpr Ops kOpsSpanUvPerPixel{/*add*/ 6, /*mul*/ 10};
 constexpr Ops kOpsSpanUvPerSpan{/*add*/ 4, /*mul*/ 4};
 
-}  // namespace modules
+}  // namespace shadetlm::modules

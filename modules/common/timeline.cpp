@@ -1,11 +1,11 @@
-#include "modules/common/timeline.hpp"
+#include "shadetlm/modules/common/timeline.hpp"
 
 #include <fstream>
 #include <stdexcept>
 
-#include "core/frame.hpp"
+#include "shadetlm/core/frame.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 void Timeline::write(const std::string& path, const std::vector<std::string>& names, double clock_mhz) const {
   core::write_atomically(path, [&](const std::string& tmp) {
@@ -28,4 +28,4 @@ void Timeline::write(const std::string& path, const std::vector<std::string>& na
   });
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace modules {
+namespace shadetlm::modules {
 
 class Timeline {
  public:
@@ -26,4 +26,4 @@ class Timeline {
   std::vector<Slice> slices_;
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

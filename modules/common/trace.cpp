@@ -1,8 +1,8 @@
-#include "modules/common/trace.hpp"
+#include "shadetlm/modules/common/trace.hpp"
 
 #include <algorithm>
 
-namespace modules {
+namespace shadetlm::modules {
 
 Tracer::Tracer(sc_core::sc_module_name name, const std::string& vcd_path, TraceRegion region,
                sc_core::sc_time period)
@@ -102,4 +102,4 @@ void Tracer::run() {
   }
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -13,7 +13,7 @@
 
 #include <systemc>
 
-namespace modules {
+namespace shadetlm::modules {
 
 // False in a build configured with -DSHADETLM_TRACING=OFF: the blocks' tracing hooks
 // compile away (used only to measure their cost).
@@ -95,4 +95,4 @@ class Tracer : public sc_core::sc_module {
   uint64_t seq_ = 0, records_ = 0, first_ = 0, last_ = 0;
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

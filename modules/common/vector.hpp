@@ -1,8 +1,8 @@
 #pragma once
 // Small vector helpers for the kernels, written over the number type T.
-#include "modules/common/ops.hpp"
+#include "shadetlm/modules/common/ops.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 template <class T>
 T dot3(const T a[3], const T b[3]) {
@@ -19,4 +19,4 @@ void normalize3(T v[3]) {
 }
 constexpr Ops kOpsNormalize3{/*add*/ 2, /*mul*/ 6, /*div*/ 1, /*sqrt*/ 1};
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,8 +1,8 @@
 // The framebuffer's declaration (modules/common/declaration.hpp).
-#include "modules/common/declaration.hpp"
-#include "modules/framebuffer/framebuffer_kernel.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
+#include "shadetlm/modules/framebuffer/framebuffer_kernel.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 namespace {
 class FramebufferBlock : public SpanBlock<FramebufferKernel> {
@@ -30,4 +30,4 @@ BlockDecl framebuffer_block() {
           }};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,10 +1,10 @@
-#include "modules/framebuffer/framebuffer_kernel.hpp"
+#include "shadetlm/modules/framebuffer/framebuffer_kernel.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace modules {
+namespace shadetlm::modules {
 
 FramebufferKernel::FramebufferKernel(const core::Scene& scene, bool deferred)
     : frame_(scene.camera.width, scene.camera.height) {
@@ -80,4 +80,4 @@ void FramebufferKernel::process(SpanPacket& p) {
   }
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
-#include "core/frame.hpp"
-#include "modules/common/block.hpp"
-#include "modules/common/number.hpp"
-#include "modules/common/packet.hpp"
+#include "shadetlm/core/frame.hpp"
+#include "shadetlm/modules/common/block.hpp"
+#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/modules/common/packet.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 class FramebufferKernel {
  public:
@@ -52,4 +52,4 @@ class FramebufferKernel {
   Ops ops_;           // stores only: no arithmetic
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,8 +1,8 @@
 // The lighting block's declaration (modules/common/declaration.hpp).
-#include "modules/common/declaration.hpp"
-#include "modules/lighting/lighting_kernel.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
+#include "shadetlm/modules/lighting/lighting_kernel.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 BlockDecl lighting_block() {
   return {"lighting", {10, 1}, true, {}, {}, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
@@ -10,4 +10,4 @@ BlockDecl lighting_block() {
           }};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

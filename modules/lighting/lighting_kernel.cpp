@@ -1,12 +1,12 @@
-#include "modules/lighting/lighting_kernel.hpp"
+#include "shadetlm/modules/lighting/lighting_kernel.hpp"
 
 #include <cmath>
 #include <type_traits>
 
-#include "modules/common/vector.hpp"
-#include "modules/lighting/power.hpp"
+#include "shadetlm/modules/common/vector.hpp"
+#include "shadetlm/modules/lighting/power.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 LightingKernel::LightingKernel(const core::Scene& scene, core::NumberFormat format)
     : numbers_(format), checks_(checks_outputs(format, false)) {
@@ -152,4 +152,4 @@ void LightingKernel::shade(SpanPacket& p) {
   }
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

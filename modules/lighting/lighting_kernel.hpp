@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "modules/common/number.hpp"
-#include "modules/common/packet.hpp"
+#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/modules/common/packet.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 class LightingKernel {
  public:
@@ -56,4 +56,4 @@ class LightingKernel {
   uint64_t nonfinite_ = 0;
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

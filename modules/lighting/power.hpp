@@ -23,7 +23,7 @@
 #include <cstdint>
 #include <cstring>
 
-namespace modules {
+namespace shadetlm::modules {
 
 // Every step is computed and the ternaries select values (no operation behind a
 // condition): the compiler if-converts and vectorizes only that.
@@ -57,4 +57,4 @@ inline float specular_power(float x, float e) {
   return exp_t * (underflow ? 0.0f : scale);
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

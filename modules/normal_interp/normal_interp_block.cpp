@@ -1,8 +1,8 @@
 // The normal interpolator's declaration (modules/common/declaration.hpp).
-#include "modules/common/declaration.hpp"
-#include "modules/normal_interp/normal_interp_kernel.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
+#include "shadetlm/modules/normal_interp/normal_interp_kernel.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 namespace {
 // normal_interp.reseed: 0 none, −1 per line, N every N pixels.
@@ -24,4 +24,4 @@ BlockDecl normal_interp_block() {
           }};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,6 +1,6 @@
-#include "modules/normal_interp/normal_interp_kernel.hpp"
+#include "shadetlm/modules/normal_interp/normal_interp_kernel.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 void NormalInterpKernel::process(SpanPacket& p) {
   with_number_type(numbers_, [&](auto zero) { walk<decltype(zero)>(p); });
@@ -100,4 +100,4 @@ void NormalInterpKernel::walk(SpanPacket& p) {
   ops_.add += 3 * last_steps_;
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

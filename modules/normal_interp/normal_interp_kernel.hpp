@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "modules/common/number.hpp"
-#include "modules/common/packet.hpp"
-#include "modules/common/range.hpp"
+#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/common/range.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 class NormalInterpKernel {
  public:
@@ -66,4 +66,4 @@ class NormalInterpKernel {
   ValueRange range_;  // the walked normal, N or N/w
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

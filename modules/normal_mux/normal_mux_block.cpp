@@ -1,8 +1,8 @@
 // The normal multiplexer's declaration (modules/common/declaration.hpp).
-#include "modules/common/declaration.hpp"
-#include "modules/normal_mux/normal_mux_kernel.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
+#include "shadetlm/modules/normal_mux/normal_mux_kernel.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 BlockDecl normal_mux_block() {
   return {"normal_mux", {1, 1}, false, {}, NormalMuxKernel::needed, [](const BlockContext&) -> std::unique_ptr<Block> {
@@ -10,4 +10,4 @@ BlockDecl normal_mux_block() {
           }};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

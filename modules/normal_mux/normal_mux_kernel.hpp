@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "modules/common/packet.hpp"
+#include "shadetlm/modules/common/packet.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 class NormalMuxKernel {
  public:
@@ -38,12 +38,12 @@ class NormalMuxKernel {
   Ops ops_;
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules
 
-namespace modules {
+namespace shadetlm::modules {
 inline bool NormalMuxKernel::needed(const core::Scene& scene) {
   for (const auto& o : scene.objects)
     if (core::fetches_normal(scene.materials[size_t(o.material)].path)) return true;
   return false;
 }
-}  // namespace modules
+}  // namespace shadetlm::modules

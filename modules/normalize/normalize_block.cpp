@@ -1,8 +1,8 @@
 // The normalize block's declaration (modules/common/declaration.hpp).
-#include "modules/common/declaration.hpp"
-#include "modules/normalize/normalize_kernel.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
+#include "shadetlm/modules/normalize/normalize_kernel.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 BlockDecl normalize_block() {
   return {"normalize", {12, 1}, true,
@@ -13,4 +13,4 @@ BlockDecl normalize_block() {
           }};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

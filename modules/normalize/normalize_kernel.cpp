@@ -1,9 +1,9 @@
-#include "modules/normalize/normalize_kernel.hpp"
+#include "shadetlm/modules/normalize/normalize_kernel.hpp"
 
 #include <stdexcept>
 #include <type_traits>
 
-namespace modules {
+namespace shadetlm::modules {
 
 const std::vector<std::string>& normalize_mode_names() {
   static const std::vector<std::string> names = {"exact", "forward-difference", "rsqrt0", "rsqrt1", "rsqrt2"};
@@ -75,4 +75,4 @@ void NormalizeKernel::normalize_as(SpanPacket& p, NormalizeMode mode) {
   }
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
-#include "modules/common/number.hpp"
-#include "modules/common/packet.hpp"
+#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/modules/common/packet.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 enum class NormalizeMode { Exact, ForwardDifference, Rsqrt0, Rsqrt1, Rsqrt2 };
 // The modes' names (pipeline.normalize.mode), in the order of NormalizeMode.
@@ -169,4 +169,4 @@ class NormalizeKernel {
   float radicand_[kSpanMax] = {};
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,8 +1,8 @@
 // The parallax tracer's declaration (modules/common/declaration.hpp).
-#include "modules/common/declaration.hpp"
-#include "modules/parallax/parallax_kernel.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
+#include "shadetlm/modules/parallax/parallax_kernel.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 BlockDecl parallax_block() {
   return {"parallax", {16, 1}, true, {}, ParallaxKernel::needed, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
@@ -10,4 +10,4 @@ BlockDecl parallax_block() {
           }};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

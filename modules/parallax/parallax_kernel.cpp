@@ -1,11 +1,11 @@
-#include "modules/parallax/parallax_kernel.hpp"
+#include "shadetlm/modules/parallax/parallax_kernel.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <type_traits>
 
-namespace modules {
+namespace shadetlm::modules {
 
 ParallaxMaps build_parallax_maps(const core::Texture& height_map, const core::ParallaxSettings& s,
                                  const std::string& file) {
@@ -275,4 +275,4 @@ void ParallaxKernel::process(SpanPacket& p) {
   last_iterations_ = iterations;  // one iteration a cycle
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

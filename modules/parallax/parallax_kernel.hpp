@@ -21,11 +21,11 @@
 #include <string>
 #include <vector>
 
-#include "core/parallax_map.hpp"
-#include "modules/common/number.hpp"
-#include "modules/common/packet.hpp"
+#include "shadetlm/core/parallax_map.hpp"
+#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/modules/common/packet.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 // The maps one material's tracer reads, built from its height map.
 struct ParallaxMaps {
@@ -91,4 +91,4 @@ class ParallaxKernel {
   float captured_[2][kSpanMax] = {};  // u, v in, for the waveforms
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

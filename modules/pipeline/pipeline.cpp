@@ -1,4 +1,4 @@
-#include "modules/pipeline/pipeline.hpp"
+#include "shadetlm/modules/pipeline/pipeline.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -9,9 +9,9 @@
 
 #include <tlm_utils/tlm_quantumkeeper.h>
 
-#include "core/input_error.hpp"
+#include "shadetlm/core/input_error.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 // Each block's declaration, beside its kernel (modules/<name>/<name>_block.cpp).
 BlockDecl setup_block(), raster_block(), parallax_block(), normal_interp_block(), bump_fetch_block(),
@@ -231,4 +231,4 @@ void write_gtkw(const std::string& path, const std::string& vcd, const std::vect
   });
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

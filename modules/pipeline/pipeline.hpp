@@ -17,12 +17,12 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.hpp"
-#include "modules/common/declaration.hpp"
-#include "modules/common/report.hpp"
-#include "modules/common/trace.hpp"
+#include "shadetlm/core/scene.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
+#include "shadetlm/modules/common/report.hpp"
+#include "shadetlm/modules/common/trace.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 // The shading pipeline of the four papers: its settings and passes.
 PipelineDecl standard_pipeline();
@@ -80,4 +80,4 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect = {});
 void write_gtkw(const std::string& path, const std::string& vcd, const std::vector<Tracer::ProbeInfo>& probes,
                 double from_ps, double to_ps);
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,6 +1,6 @@
-#include "modules/raster/raster.hpp"
+#include "shadetlm/modules/raster/raster.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 Raster::Raster(sc_core::sc_module_name name, RasterKernel& kernel, Timing timing, sc_core::sc_time period)
     : sc_core::sc_module(name), in("in"), out("out"), kernel_(kernel), schedule_(timing), period_(period) {
@@ -52,4 +52,4 @@ void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& dela
   trans.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

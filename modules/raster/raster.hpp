@@ -1,10 +1,10 @@
 #pragma once
 // The raster block: triangles in, span packets out (RasterKernel). Busy one II per
 // pixel walked, hidden ones included; a packet leaves when the walk has reached it.
-#include "modules/common/block.hpp"
-#include "modules/raster/raster_kernel.hpp"
+#include "shadetlm/modules/common/block.hpp"
+#include "shadetlm/modules/raster/raster_kernel.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 class Raster : public sc_core::sc_module, public BlockInfo {
  public:
@@ -32,4 +32,4 @@ class Raster : public sc_core::sc_module, public BlockInfo {
   tlm::tlm_generic_payload span_;
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,8 +1,8 @@
 // The raster's declaration (modules/common/declaration.hpp).
-#include "modules/common/declaration.hpp"
-#include "modules/raster/raster.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
+#include "shadetlm/modules/raster/raster.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 namespace {
 class RasterBlock : public Block {
@@ -33,4 +33,4 @@ BlockDecl raster_block() {
           }};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -13,9 +13,9 @@
 // interpolation).
 #include <vector>
 
-#include "modules/common/packet.hpp"
+#include "shadetlm/modules/common/packet.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 class RasterKernel {
  public:
@@ -106,4 +106,4 @@ void RasterKernel::run(const TriangleSetup& t, Emit&& emit) {
   hidden_ += hidden;
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,6 +1,6 @@
-#include "modules/setup/setup.hpp"
+#include "shadetlm/modules/setup/setup.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 Setup::Setup(sc_core::sc_module_name name, SetupKernel& kernel, Timing timing, sc_core::sc_time period)
     : sc_core::sc_module(name), out("out"), kernel_(kernel), schedule_(timing), period_(period) {
@@ -49,4 +49,4 @@ void Setup::run() {
   if (tracer_) tracer_->source_done();
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

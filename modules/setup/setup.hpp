@@ -4,12 +4,12 @@
 // one quantum keeper: local time advances by II cycles per triangle and the thread
 // yields to the kernel only when a quantum is used up. After the last triangle it sends
 // the end of the pass (PassEnd), which starts the passes after it.
-#include "modules/common/block.hpp"  // <systemc> first: the quantum keeper needs it
-#include "modules/setup/setup_kernel.hpp"
+#include "shadetlm/modules/common/block.hpp"  // <systemc> first: the quantum keeper needs it
+#include "shadetlm/modules/setup/setup_kernel.hpp"
 
 #include <tlm_utils/tlm_quantumkeeper.h>
 
-namespace modules {
+namespace shadetlm::modules {
 
 class Setup : public sc_core::sc_module, public BlockInfo {
  public:
@@ -34,4 +34,4 @@ class Setup : public sc_core::sc_module, public BlockInfo {
   BlockStats stats_;
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

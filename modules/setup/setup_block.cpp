@@ -1,9 +1,9 @@
 // The setup block's declaration (modules/common/declaration.hpp): the source of the
 // main pass.
-#include "modules/common/declaration.hpp"
-#include "modules/setup/setup.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
+#include "shadetlm/modules/setup/setup.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 namespace {
 class SetupBlock : public Block {
@@ -36,4 +36,4 @@ BlockDecl setup_block() {
           }};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

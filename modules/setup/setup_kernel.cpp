@@ -1,11 +1,11 @@
-#include "modules/setup/setup_kernel.hpp"
+#include "shadetlm/modules/setup/setup_kernel.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "modules/common/vector.hpp"
+#include "shadetlm/modules/common/vector.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 SetupKernel::SetupKernel(const core::Scene& scene, bool perspective, bool affine_bump_vectors)
     : scene_(scene),
@@ -219,4 +219,4 @@ void SetupKernel::setup_bump(const Vertex v[3], const float inv_w[3], const Plan
   }
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -13,9 +13,9 @@
 #include <functional>
 #include <vector>
 
-#include "modules/common/packet.hpp"
+#include "shadetlm/modules/common/packet.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 // A plane through three vertices' values of one attribute, with the geometry terms
 // shared by all the planes of a triangle. Written over the number type T so that a
@@ -148,4 +148,4 @@ void SetupKernel::run(Emit&& emit) {
   }
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

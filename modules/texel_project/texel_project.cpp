@@ -1,6 +1,6 @@
-#include "modules/texel_project/texel_project.hpp"
+#include "shadetlm/modules/texel_project/texel_project.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 TexelProject::TexelProject(sc_core::sc_module_name name, TexelProjectKernel& kernel, Timing timing,
                            sc_core::sc_time)
@@ -30,4 +30,4 @@ void TexelProject::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time
   if (out.size() > 0) out->b_transport(trans, delay);  // span packets never reach a later pass
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

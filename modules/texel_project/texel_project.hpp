@@ -3,10 +3,10 @@
 // The end of that pass (PassEnd, from the framebuffer) brings the frame; the module runs
 // the second pass of TexelProjectKernel on it, its cycles starting when the main pass
 // has put out its last pixel, and hands the end of its own pass on.
-#include "modules/common/block.hpp"
-#include "modules/texel_project/texel_project_kernel.hpp"
+#include "shadetlm/modules/common/block.hpp"
+#include "shadetlm/modules/texel_project/texel_project_kernel.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 class TexelProject : public sc_core::sc_module, public BlockInfo, public PacketTarget {
  public:
@@ -29,4 +29,4 @@ class TexelProject : public sc_core::sc_module, public BlockInfo, public PacketT
   Schedule schedule_;
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,9 +1,9 @@
 // texel_project's declaration (modules/common/declaration.hpp): a pass of its own over
 // the frame, after the main chain.
-#include "modules/common/declaration.hpp"
-#include "modules/texel_project/texel_project.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
+#include "shadetlm/modules/texel_project/texel_project.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 namespace {
 class TexelProjectBlock : public Block {
@@ -34,4 +34,4 @@ BlockDecl texel_project_block() {
           }};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

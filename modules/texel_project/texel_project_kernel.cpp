@@ -1,14 +1,14 @@
-#include "modules/texel_project/texel_project_kernel.hpp"
+#include "shadetlm/modules/texel_project/texel_project_kernel.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
 
-#include "core/bump_map.hpp"
-#include "core/coverage.hpp"
-#include "modules/common/sampler.hpp"
+#include "shadetlm/core/bump_map.hpp"
+#include "shadetlm/core/coverage.hpp"
+#include "shadetlm/modules/common/sampler.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 PolygonRotation::PolygonRotation(const glm::dvec3& n) {
   const double d = std::sqrt(n.y * n.y + n.z * n.z);
@@ -340,4 +340,4 @@ nlohmann::json TexelProjectKernel::details() const {
           {"cycles", cycles_}};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -30,11 +30,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "modules/common/number.hpp"
-#include "modules/common/packet.hpp"
-#include "modules/framebuffer/framebuffer_kernel.hpp"
+#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/framebuffer/framebuffer_kernel.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 // The rotation of (1)–(2) for a unit normal n: rows of R, so that R·n = +z.
 struct PolygonRotation {
@@ -107,4 +107,4 @@ class TexelProjectKernel {
   uint64_t nonfinite_ = 0;
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,8 +1,8 @@
 // The colour texture fetch's declaration (modules/common/declaration.hpp).
-#include "modules/common/declaration.hpp"
-#include "modules/texture_fetch/texture_fetch_kernel.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
+#include "shadetlm/modules/texture_fetch/texture_fetch_kernel.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 BlockDecl texture_fetch_block() {
   return {"texture_fetch", {8, 1}, false,
@@ -17,4 +17,4 @@ BlockDecl texture_fetch_block() {
           }};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

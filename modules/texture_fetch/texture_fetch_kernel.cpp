@@ -1,11 +1,11 @@
-#include "modules/texture_fetch/texture_fetch_kernel.hpp"
+#include "shadetlm/modules/texture_fetch/texture_fetch_kernel.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/bump_map.hpp"
+#include "shadetlm/core/bump_map.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 bool TextureFetchKernel::needed(const core::Scene& scene) {
   for (const auto& o : scene.objects)
@@ -95,4 +95,4 @@ void TextureFetchKernel::fetch(SpanPacket& p) {
   if (p.count > 0) ops_ += kOpsPerSpan;
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

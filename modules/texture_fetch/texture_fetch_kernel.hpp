@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "modules/common/number.hpp"
-#include "modules/common/packet.hpp"
-#include "modules/common/range.hpp"
-#include "modules/common/sampler.hpp"
+#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/common/range.hpp"
+#include "shadetlm/modules/common/sampler.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 class TextureFetchKernel {
  public:
@@ -70,4 +70,4 @@ class TextureFetchKernel {
   uint64_t nonfinite_ = 0;
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -1,8 +1,8 @@
 // The L and H interpolator's declaration (modules/common/declaration.hpp).
-#include "modules/common/declaration.hpp"
-#include "modules/vector_interp/vector_interp_kernel.hpp"
+#include "shadetlm/modules/common/declaration.hpp"
+#include "shadetlm/modules/vector_interp/vector_interp_kernel.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 BlockDecl vector_interp_block() {
   return {"vector_interp", {20, 1}, true,
@@ -15,4 +15,4 @@ BlockDecl vector_interp_block() {
           }};
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

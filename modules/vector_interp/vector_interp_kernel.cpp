@@ -1,11 +1,11 @@
-#include "modules/vector_interp/vector_interp_kernel.hpp"
+#include "shadetlm/modules/vector_interp/vector_interp_kernel.hpp"
 
 #include <algorithm>
 #include <type_traits>
 
-#include "modules/common/vector.hpp"
+#include "shadetlm/modules/common/vector.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 VectorInterpKernel::VectorInterpKernel(const core::Scene& scene, const std::vector<int>& point_lights,
                                        bool affine_bump_vectors, core::NumberFormat format)
@@ -220,4 +220,4 @@ void VectorInterpKernel::process_in_world(SpanPacket& p) {
   }
 }
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "modules/common/number.hpp"
-#include "modules/common/packet.hpp"
-#include "modules/common/range.hpp"
+#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/common/range.hpp"
 
-namespace modules {
+namespace shadetlm::modules {
 
 class VectorInterpKernel {
  public:
@@ -68,4 +68,4 @@ class VectorInterpKernel {
   bool writes_l_[kMaxLights] = {}, writes_h_[kMaxLights] = {};  // in the world: the lights' L and H it writes
 };
 
-}  // namespace modules
+}  // namespace shadetlm::modules

@@ -3,9 +3,11 @@
 // core::InputError. scripts/fuzz.sh builds and runs it.
 #include <cstdio>
 
-#include "core/input_error.hpp"
-#include "core/mesh_io.hpp"
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/mesh_io.hpp"
 #include "fuzz_file.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;

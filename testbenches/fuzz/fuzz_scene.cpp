@@ -5,8 +5,10 @@
 #include <cstdint>
 #include <string>
 
-#include "core/input_error.hpp"
-#include "core/scene.hpp"
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/scene.hpp"
+
+using namespace shadetlm;  // core::, modules::, reference::
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
