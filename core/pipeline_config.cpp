@@ -22,7 +22,9 @@ void flatten(const json& j, const std::string& prefix, std::map<std::string, jso
              const std::string& file) {
   for (auto it = j.begin(); it != j.end(); ++it) {
     std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
-    if (it->is_object())  // no setting takes an object
+    if (it->is_object() && it->empty())
+      throw InputError(file, "pipeline." + key, "expected a value, not an empty object");
+    if (it->is_object())  // no setting takes an object: a section of dotted keys
       flatten(*it, key, out, file);
     else if (!out.emplace(key, *it).second)  // both nested and dotted
       throw InputError(file, "pipeline." + key, "the setting is given twice");

@@ -2,7 +2,7 @@
 // The `pipeline` section of a scene: block configuration as `<block>.<setting>` keys
 // (`pipeline.normalize.mode` on the command line). core/ knows no block: a scene keeps
 // the settings it was given (PipelineConfig), and the pipeline's declaration, where each
-// block declares its own settings (modules/pipeline/declaration.hpp), resolves them into
+// block declares its own settings (modules/common/declaration.hpp), resolves them into
 // Settings: unknown keys and wrong values are rejected there, naming the file and key.
 #include <map>
 #include <string>

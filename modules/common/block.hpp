@@ -29,21 +29,6 @@
 
 namespace shadetlm::modules {
 
-class FramebufferKernel;
-
-// The end of a pass, a transaction of its own (command TLM_IGNORE_COMMAND, where span
-// packets and triangles are writes) that follows the pass's last packet through every
-// block. It starts the next pass (texel_project's splat pass after the main chain) and
-// carries what that pass needs from this one.
-struct PassEnd {
-  uint64_t cycle = 0;  // when every block of the pass so far has put out its last result
-  FramebufferKernel* framebuffer = nullptr;  // set by the framebuffer: the frame so far
-};
-// Kernels that hand something on at the end of a pass have end_pass(PassEnd&).
-template <class K, class = void> struct has_end_pass : std::false_type {};
-template <class K>
-struct has_end_pass<K, std::void_t<decltype(std::declval<K&>().end_pass(std::declval<PassEnd&>()))>>
-    : std::true_type {};
 
 // A block's calendar: when it is free, how long it has been busy.
 class Schedule {
@@ -116,6 +101,13 @@ class BlockInfo {
   void pass_end(PassEnd& e) const { e.cycle = std::max(e.cycle, schedule().free_cycle() + schedule().timing().latency); }
 };
 
+// Whether a transaction is the end of a pass (PassEnd) rather than a packet: a
+// platform's driver that leaves the command unset (TLM_IGNORE_COMMAND) still sends
+// packets, as long as its data length is not that of a PassEnd.
+inline bool is_pass_end(const tlm::tlm_generic_payload& trans) {
+  return trans.get_command() == tlm::TLM_IGNORE_COMMAND && trans.get_data_length() == sizeof(PassEnd);
+}
+
 // Forwards a transaction to `next` (a bound socket's interface; none after the last
 // block) with the delay annotation of `cycle`: its time relative to `now`, the
 // simulation time (which no blocking call along a packet's way through the blocks
@@ -177,7 +169,7 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
   void end_of_elaboration() override { next_ = out.size() > 0 ? out.operator->() : nullptr; }
 
   void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) override {
-    if (trans.get_command() != tlm::TLM_WRITE_COMMAND) return end_pass(trans, delay);
+    if (is_pass_end(trans)) return end_pass(trans, delay);
     SpanPacket& p = *reinterpret_cast<SpanPacket*>(trans.get_data_ptr());
     if (kernel_.bypass(p)) {
       // Through the bypass wire: no work, no cycles; the packet goes on with the time

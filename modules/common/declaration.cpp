@@ -1,5 +1,6 @@
 #include "shadetlm/modules/common/declaration.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace shadetlm::modules {

@@ -3,6 +3,8 @@
 // increments); per span, a packet of up to kSpanMax visible pixels of one raster row
 // of one triangle, in structure-of-arrays form, filled in block by block.
 #include <cstdint>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "shadetlm/core/coverage.hpp"
@@ -97,5 +99,21 @@ struct SpanPacket {
   float rgb[3][kSpanMax]; // lighting (texture-object: the ambient and diffuse factor D)
   float spec[3][kSpanMax]; // lighting, texture-object only: the specular term S (C = tex ⊙ D + S later)
 };
+
+class FramebufferKernel;
+
+// The end of a pass, a transaction of its own (command TLM_IGNORE_COMMAND and a data
+// length of sizeof(PassEnd), where span packets and triangles are writes) that follows the pass's last packet through every
+// block. It starts the next pass (texel_project's splat pass after the main chain) and
+// carries what that pass needs from this one.
+struct PassEnd {
+  uint64_t cycle = 0;  // when every block of the pass so far has put out its last result
+  FramebufferKernel* framebuffer = nullptr;  // set by the framebuffer: the frame so far
+};
+// Kernels that hand something on at the end of a pass have end_pass(PassEnd&).
+template <class K, class = void> struct has_end_pass : std::false_type {};
+template <class K>
+struct has_end_pass<K, std::void_t<decltype(std::declval<K&>().end_pass(std::declval<PassEnd&>()))>>
+    : std::true_type {};
 
 }  // namespace shadetlm::modules

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "shadetlm/core/frame.hpp"
-#include "shadetlm/modules/common/block.hpp"
 #include "shadetlm/modules/common/number.hpp"
 #include "shadetlm/modules/common/packet.hpp"
 

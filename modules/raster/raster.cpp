@@ -16,7 +16,7 @@ BlockStats Raster::stats() const {
 }
 
 void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
-  if (trans.get_command() != tlm::TLM_WRITE_COMMAND) {  // the end of the pass
+  if (is_pass_end(trans)) {
     pass_end(*reinterpret_cast<PassEnd*>(trans.get_data_ptr()));
     return out->b_transport(trans, delay);
   }

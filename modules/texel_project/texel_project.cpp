@@ -19,15 +19,14 @@ BlockStats TexelProject::stats() const {
 
 void TexelProject::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
   trans.set_response_status(tlm::TLM_OK_RESPONSE);
-  if (trans.get_command() != tlm::TLM_WRITE_COMMAND) {  // the end of the main pass: the frame
-    PassEnd& e = *reinterpret_cast<PassEnd*>(trans.get_data_ptr());
-    if (e.framebuffer) {
-      kernel_.run(*e.framebuffer);
-      schedule_.occupy(e.cycle, kernel_.cycles());
-    }
-    pass_end(e);
+  if (!is_pass_end(trans)) return;  // the main pass's packets, forwarded to it: nothing to do
+  PassEnd& e = *reinterpret_cast<PassEnd*>(trans.get_data_ptr());  // the end of the main pass: the frame
+  if (e.framebuffer) {
+    kernel_.run(*e.framebuffer);
+    schedule_.occupy(e.cycle, kernel_.cycles());
   }
-  if (out.size() > 0) out->b_transport(trans, delay);  // span packets never reach a later pass
+  pass_end(e);
+  if (out.size() > 0) out->b_transport(trans, delay);
 }
 
 }  // namespace shadetlm::modules
