@@ -172,3 +172,22 @@ TEST_CASE("every golden folder has its test case and its golden.json", "[golden]
       CHECK(std::filesystem::exists(e.path() / "golden.json"));
     }
 }
+
+TEST_CASE("every golden configuration has its accepted frame and cycles", "[golden]") {
+  // scripts/regress.sh compares each configuration's cycles with stats.<name>.json; one
+  // missing fails the regression on every clean clone (the tests above run further
+  // configurations through the loop, which has no cycles, so they would not notice).
+  for (const auto& e : std::filesystem::directory_iterator(test::source_path("golden"))) {
+    if (!e.is_directory()) continue;
+    std::ifstream in(e.path() / "golden.json");
+    const json spec = json::parse(in);
+    CHECK(std::filesystem::exists(e.path() / "frame.exr"));
+    CHECK(std::filesystem::exists(e.path() / "stats.json"));
+    const json configs = spec.value("configurations", json::object());
+    for (const auto& [config, c] : configs.items()) {
+      INFO(e.path().filename().string() << " configuration " << config);
+      CHECK(std::filesystem::exists(e.path() / ("frame." + config + ".exr")));
+      CHECK(std::filesystem::exists(e.path() / ("stats." + config + ".json")));
+    }
+  }
+}
