@@ -34,6 +34,16 @@ struct BlockContext {
   core::NumberFormat format() const { return settings.format(name); }
 };
 
+class Block;
+
+// The loop engine's span blocks in order, called for every packet the raster puts out.
+// (A type of its own, not a std::function: the raster's walk calls it inline.)
+struct SpanChain {
+  std::vector<Block*> blocks;
+  uint64_t pixels = 0;  // that reached the end of the chain
+  void operator()(SpanPacket& p);
+};
+
 // One elaborated block: its kernel, seen by both engines. The loop engine calls the
 // kernel through it; the SystemC engine asks it for the module around the kernel.
 class Block {
@@ -47,9 +57,10 @@ class Block {
   virtual ~Block() = default;
   virtual Kind kind() const = 0;
 
-  // The loop engine.
-  virtual void emit_triangles(const std::function<void(const TriangleSetup&)>&) {}  // Source
-  virtual void emit_spans(const TriangleSetup&, const std::function<void(SpanPacket&)>&) {}  // Raster
+  // The loop engine: the source sets up every triangle and hands it to the raster,
+  // whose packets go through the chain of span blocks.
+  virtual void run_pass(Block& /*raster*/, SpanChain&) {}  // Source
+  virtual void emit_spans(const TriangleSetup&, SpanChain&) {}  // Raster
   virtual void process(SpanPacket&) {}  // Span: bypass or work
   // The end of the pass before reaches every block in order: a block may hand data on
   // in it (the framebuffer its frame), a Frame block runs its pass.
@@ -66,6 +77,11 @@ class Block {
   virtual void finish(BlockReport&, RenderResult&) {}
 };
 
+inline void SpanChain::operator()(SpanPacket& p) {
+  for (Block* b : blocks) b->process(p);
+  pixels += uint64_t(p.count);
+}
+
 struct BlockDecl {
   std::string name;                         // of its folder, settings, statistics, module
   Timing timing;                            // defaults of <name>.latency and <name>.ii
@@ -75,6 +91,21 @@ struct BlockDecl {
   // Builds the block, e.g. std::make_unique<SpanBlock<K>>(kernel arguments…): the
   // kernel is built in place (kernels may point into themselves).
   std::function<std::unique_ptr<Block>(const BlockContext&)> make;
+};
+
+// A block of a kernel and the SystemC module built around it as
+// Module(name, kernel, timing, period).
+template <class Kernel, class Module>
+class KernelBlock : public Block {
+ public:
+  template <class... Args>
+  explicit KernelBlock(Args&&... args) : kernel(std::forward<Args>(args)...) {}
+  Kernel kernel;
+
+  std::unique_ptr<BlockInfo> module(const char* name, Timing timing, sc_core::sc_time period) override {
+    return std::make_unique<Module>(name, kernel, timing, period);
+  }
+  Ops ops() const override { return kernel.ops(); }
 };
 
 // The span kernels' optional reports, found by their signatures.
@@ -93,24 +124,19 @@ struct has_precompute<K, std::void_t<decltype(std::declval<const K&>().precomput
 // details() (JSON), precompute_seconds() and end_pass(PassEnd&), which are reported
 // or called where present.
 template <class K>
-class SpanBlock : public Block {
+class SpanBlock : public KernelBlock<K, Stage<K>> {
  public:
-  template <class... Args>
-  explicit SpanBlock(Args&&... args) : kernel(std::forward<Args>(args)...) {}
-  K kernel;
+  using KernelBlock<K, Stage<K>>::KernelBlock;
+  using KernelBlock<K, Stage<K>>::kernel;
 
-  Kind kind() const override { return Kind::Span; }
+  Block::Kind kind() const override { return Block::Kind::Span; }
   void process(SpanPacket& p) override {
     if (!kernel.bypass(p)) kernel.process(p);
   }
   void end_pass(PassEnd& e) override {
     if constexpr (has_end_pass<K>::value) kernel.end_pass(e);
   }
-  std::unique_ptr<BlockInfo> module(const char* name, Timing timing, sc_core::sc_time period) override {
-    return std::make_unique<Stage<K>>(name, kernel, timing, period);
-  }
   std::vector<std::string> trace_names() const override { return K::trace_names(); }
-  Ops ops() const override { return kernel.ops(); }
   void finish(BlockReport& b, RenderResult& r) override {
     if constexpr (has_ranges<K>::value) b.ranges = kernel.ranges();
     if constexpr (has_numbers<K>::value) b.numbers = kernel.numbers();

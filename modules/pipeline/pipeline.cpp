@@ -128,20 +128,15 @@ RenderResult render_loop(const core::Scene& scene, const PipelineDecl& declarati
 RenderResult run_loop(Pipeline& pipeline, const Inspect& inspect) {
   auto& blocks = pipeline.blocks();
   if (inspect.progress) blocks[0].block->set_progress(inspect.progress);
-  std::vector<Block*> spans;
+  SpanChain chain;
   for (auto& b : blocks)
-    if (b.block->kind() == Block::Kind::Span) spans.push_back(b.block.get());
+    if (b.block->kind() == Block::Kind::Span) chain.blocks.push_back(b.block.get());
   RenderResult r;
   r.engine = "loop";
   r.clock_mhz = pipeline.clock_mhz();
   const auto start = std::chrono::steady_clock::now();
-  Block& raster = *blocks[1].block;
-  blocks[0].block->emit_triangles([&](const TriangleSetup& t) {
-    raster.emit_spans(t, [&](SpanPacket& p) {
-      for (Block* b : spans) b->process(p);
-      r.pixels_shaded += uint64_t(p.count);
-    });
-  });
+  blocks[0].block->run_pass(*blocks[1].block, chain);
+  r.pixels_shaded = chain.pixels;
   PassEnd end;  // the main pass has ended: the passes after it run
   for (auto& b : blocks) b.block->end_pass(end);
   r.wall_s = seconds_since(start);

@@ -5,25 +5,16 @@
 namespace shadetlm::modules {
 
 namespace {
-class RasterBlock : public Block {
+class RasterBlock : public KernelBlock<RasterKernel, Raster> {
  public:
-  RasterBlock(int width, int height) : kernel_(width, height) {}
+  using KernelBlock::KernelBlock;
   Kind kind() const override { return Kind::Raster; }
-  void emit_spans(const TriangleSetup& t, const std::function<void(SpanPacket&)>& emit) override {
-    kernel_.run(t, emit);
-  }
-  std::unique_ptr<BlockInfo> module(const char* name, Timing timing, sc_core::sc_time period) override {
-    return std::make_unique<Raster>(name, kernel_, timing, period);
-  }
+  void emit_spans(const TriangleSetup& t, SpanChain& chain) override { kernel.run(t, chain); }
   std::vector<std::string> trace_names() const override { return Raster::trace_names(); }
-  Ops ops() const override { return kernel_.ops(); }
   void finish(BlockReport&, RenderResult& r) override {
-    r.pixels_walked = kernel_.pixels_walked();
-    r.pixels_hidden = kernel_.pixels_hidden();
+    r.pixels_walked = kernel.pixels_walked();
+    r.pixels_hidden = kernel.pixels_hidden();
   }
-
- private:
-  RasterKernel kernel_;
 };
 }  // namespace
 

@@ -6,24 +6,18 @@
 namespace shadetlm::modules {
 
 namespace {
-class SetupBlock : public Block {
+class SetupBlock : public KernelBlock<SetupKernel, Setup> {
  public:
-  SetupBlock(const core::Scene& scene, bool perspective, bool affine_bump_vectors)
-      : kernel_(scene, perspective, affine_bump_vectors) {}
+  using KernelBlock::KernelBlock;
   Kind kind() const override { return Kind::Source; }
-  void emit_triangles(const std::function<void(const TriangleSetup&)>& emit) override { kernel_.run(emit); }
-  void set_progress(std::function<void(double)> progress) override { kernel_.set_progress(std::move(progress)); }
-  std::unique_ptr<BlockInfo> module(const char* name, Timing timing, sc_core::sc_time period) override {
-    return std::make_unique<Setup>(name, kernel_, timing, period);
+  void run_pass(Block& raster, SpanChain& chain) override {
+    kernel.run([&](const TriangleSetup& t) { raster.emit_spans(t, chain); });
   }
-  Ops ops() const override { return kernel_.ops(); }
+  void set_progress(std::function<void(double)> progress) override { kernel.set_progress(std::move(progress)); }
   void finish(BlockReport&, RenderResult& r) override {
-    r.triangles_in = kernel_.triangles_in();
-    r.triangles_drawn = kernel_.triangles_out();
+    r.triangles_in = kernel.triangles_in();
+    r.triangles_drawn = kernel.triangles_out();
   }
-
- private:
-  SetupKernel kernel_;
 };
 }  // namespace
 

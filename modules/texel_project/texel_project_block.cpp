@@ -6,24 +6,17 @@
 namespace shadetlm::modules {
 
 namespace {
-class TexelProjectBlock : public Block {
+class TexelProjectBlock : public KernelBlock<TexelProjectKernel, TexelProject> {
  public:
-  TexelProjectBlock(const core::Scene& scene, int units, core::NumberFormat format) : kernel_(scene, units, format) {}
+  using KernelBlock::KernelBlock;
   Kind kind() const override { return Kind::Frame; }
   void end_pass(PassEnd& e) override {
-    if (e.framebuffer) kernel_.run(*e.framebuffer);
+    if (e.framebuffer) kernel.run(*e.framebuffer);
   }
-  std::unique_ptr<BlockInfo> module(const char* name, Timing timing, sc_core::sc_time period) override {
-    return std::make_unique<TexelProject>(name, kernel_, timing, period);
-  }
-  Ops ops() const override { return kernel_.ops(); }
   void finish(BlockReport& b, RenderResult&) override {
-    b.details = kernel_.details();
-    b.numbers = kernel_.numbers();
+    b.details = kernel.details();
+    b.numbers = kernel.numbers();
   }
-
- private:
-  TexelProjectKernel kernel_;
 };
 }  // namespace
 
