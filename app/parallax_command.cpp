@@ -107,15 +107,241 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
   }
 }
 
-Command add_parallax_bench_command(CLI::App& app) {
-  struct Options {
-    SceneOptions scene;
-    std::string material, json;
-    std::vector<double> elevations{60, 30, 15, 5};
-    double azimuth = 30;
-    int rays = 128;
+namespace {
+
+// The parallax-bench command's options, as the command line sets them.
+struct BenchOptions {
+  SceneOptions scene;
+  std::string material, json;
+  std::vector<double> elevations{60, 30, 15, 5};
+  double azimuth = 30;
+  int rays = 128;
+};
+
+// The parallax material measured: the one named (or the first), with a depth to measure.
+const core::Material& parallax_material(const core::Scene& scene, const std::string& name) {
+  const core::Material* mat = nullptr;
+  for (const auto& m : scene.materials)
+    if (m.path == core::ShadingPath::Parallax && (name.empty() || m.name == name)) {
+      mat = &m;
+      break;
+    }
+  if (!mat)
+    throw core::InputError(scene.file, "materials", "no parallax material" + (name.empty() ? "" : " named " + name));
+  if (!(mat->parallax.depth > 0)) throw core::InputError(scene.file, "parallax.depth", "must be > 0 to measure");
+  return *mat;
+}
+
+// A tracer measured: its name in the figures and its settings.
+struct Method {
+  std::string name;
+  core::ParallaxSettings s;
+};
+
+// The methods as a designer would line them up, each on the material's settings.
+std::vector<Method> methods_to_compare(const core::ParallaxSettings& base) {
+  std::vector<Method> methods;
+  auto with = [&](const char* name, core::ParallaxMethod m, bool refined = true) {
+    core::ParallaxSettings s = base;
+    s.method = m, s.refined = refined;
+    methods.push_back({name, s});
   };
-  auto opt = std::make_shared<Options>();
+  with("offset", core::ParallaxMethod::Offset);
+  with("steep", core::ParallaxMethod::Steep);
+  with("pom", core::ParallaxMethod::Pom);
+  with("relief", core::ParallaxMethod::Relief);
+  with("donnelly", core::ParallaxMethod::Distance, false);
+  with("refined", core::ParallaxMethod::Distance, true);
+  with("cone", core::ParallaxMethod::Cone);
+  return methods;
+}
+
+// The figures' header: what was measured, on which map and settings, with how many rays.
+nlohmann::json bench_header(const BenchOptions& opt, const core::Scene& scene, const core::Material& mat,
+                            const core::Texture& height) {
+  const core::ParallaxSettings& base = mat.parallax;
+  return {{"scene", scene.file},
+          {"material", mat.name},
+          {"height_map", height.name},
+          {"size", {height.width, height.height}},
+          {"depth", base.depth},
+          {"slices", base.slices},
+          {"min_elevation_deg", base.min_elevation_deg},
+          {"margin", base.margin},
+          {"max_iterations", base.max_iterations},
+          {"layers", {base.layers_min, base.layers_max}},
+          {"binary_steps", base.binary_steps},
+          {"azimuth_deg", opt.azimuth},
+          {"rays", opt.rays * opt.rays}};
+}
+
+// The maps built once for each method (one per method, in order), their times into out["precompute_s"].
+std::vector<modules::ParallaxMaps> build_maps(const std::vector<Method>& methods, const core::Texture& height,
+                                              const std::string& scene_file, nlohmann::json& out) {
+  std::vector<modules::ParallaxMaps> maps;
+  for (const auto& m : methods) {
+    maps.push_back(modules::build_parallax_maps(height, m.s, scene_file));
+    out["precompute_s"][m.name] = maps.back().precompute_s;
+  }
+  return maps;
+}
+
+// One view elevation: the rays' direction, and their entry points with the golden model's exact hits.
+struct View {
+  glm::dvec3 direction;                       // the rays' direction (golden model's space)
+  double tracer_length = 0;                   // the ray's length in the tracer's space per unit of t
+  double tracer_elevation_deg = 0;            // the elevation as the tracer sees it (texels, slices)
+  std::vector<glm::dvec2> entries;            // where the rays enter, in uv
+  std::vector<reference::ParallaxHit> exact;  // where each meets the relief first
+};
+
+// The rays of a view at `elevation` degrees (and `azimuth` degrees from the u axis), rays × rays of them.
+View view_at(double elevation, double azimuth, int rays, const core::Texture& height,
+             const core::ParallaxSettings& base) {
+  const double pi = 3.14159265358979323846;
+  const double W = height.width, H = height.height, D = base.slices;
+  View view;
+  const double el = elevation * pi / 180, az = azimuth * pi / 180;
+  const glm::dvec3 d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), -std::sin(el));
+  view.direction = d;
+  // The ray's length in the tracer's space per unit of the golden model's t.
+  view.tracer_length = glm::length(glm::dvec3(d.x * W, d.y * H, d.z * D / base.depth));
+  view.tracer_elevation_deg = std::asin(-d.z * D / base.depth / view.tracer_length) * 180 / pi;
+  // The entry points: a grid over the map, jittered within its cells (fixed hash).
+  for (int j = 0; j < rays; ++j)
+    for (int i = 0; i < rays; ++i) {
+      uint32_t x = uint32_t(i) * 0x9E3779B1u ^ uint32_t(j) * 0x85EBCA77u;
+      x ^= x >> 15, x *= 0x2C1B3C6Du, x ^= x >> 12;
+      const double jx = (x & 0xFFFF) / 65536.0, jy = (x >> 16) / 65536.0;
+      view.entries.push_back({(i + jx) / rays, (j + jy) / rays});
+      view.exact.push_back(reference::parallax_hit(height, view.entries.back(), d, base.depth));
+    }
+  return view;
+}
+
+// Every ray of the view through one tracer (W × H texels); the mean time per ray into *ns_per_ray.
+std::vector<modules::ParallaxTrace> trace_rays(const Method& method, const modules::ParallaxMaps& maps,
+                                               const View& view, double W, double H, double* ns_per_ray) {
+  const auto& entries = view.entries;
+  const glm::dvec3& d = view.direction;
+  std::vector<modules::ParallaxTrace> traces(entries.size());
+  const auto start = std::chrono::steady_clock::now();
+  for (size_t r = 0; r < entries.size(); ++r)
+    traces[r] = modules::trace_parallax(method.s, maps, float(entries[r].x * W - 0.5),
+                                        float((1 - entries[r].y) * H - 0.5), float(d.x), float(d.y), float(d.z));
+  *ns_per_ray = seconds_since(start) * 1e9 / double(entries.size());
+  return traces;
+}
+
+// One tracer's results on a view, ray by ray and summed, against the exact hits.
+struct RayFigures {
+  std::vector<int> iterations;
+  std::vector<double> error;  // uv error, texels
+  double fetches = 0, overshoot = 0, skips = 0;
+  size_t more_than_donnelly = 0;
+  size_t wrong_layer = 0, past_hit = 0;
+};
+
+// Compares the traces with the exact hits (W × H texels); `refined` counts the rays that
+// took more iterations than Donnelly's map did on the same ray (donnelly_iterations).
+RayFigures compare_with_exact(const std::vector<modules::ParallaxTrace>& traces, const View& view, double W,
+                              double H, bool refined, const std::vector<int>& donnelly_iterations) {
+  const auto& entries = view.entries;
+  const auto& exact = view.exact;
+  const glm::dvec3& d = view.direction;
+  RayFigures results;
+  results.iterations.resize(entries.size());
+  results.error.resize(entries.size());
+  for (size_t r = 0; r < entries.size(); ++r) {
+    const auto& t = traces[r];
+    // Back to uv, and the error in texels against the exact hit (wrapped).
+    const double u = (t.x + 0.5) / W, v = 1 - (t.y + 0.5) / H;
+    double eu = (u - exact[r].uv.x) * W, ev = (v - exact[r].uv.y) * H;
+    eu -= W * std::round(eu / W), ev -= H * std::round(ev / H);
+    results.error[r] = std::sqrt(eu * eu + ev * ev);
+    results.iterations[r] = t.iterations;
+    results.fetches += t.fetches;
+    results.skips += t.skips;
+    if (refined && t.iterations > donnelly_iterations[r]) ++results.more_than_donnelly;
+    // Where along the ray the result lies (its projection), against the hit.
+    const double du = (u - entries[r].x) * W, dv = (v - entries[r].y) * H;
+    const double along = (du * d.x * W + dv * d.y * H) / (d.x * W * d.x * W + d.y * H * d.y * H + 1e-300);
+    const double past = (along - exact[r].t) * view.tracer_length;  // voxels past the exact hit
+    results.overshoot = std::max(results.overshoot, past);
+    if (past > 1e-3) ++results.past_hit;
+    if ((along - exact[r].t_exit) * view.tracer_length > 0.01) ++results.wrong_layer;  // 0.01 voxel: rounding
+  }
+  return results;
+}
+
+// The value below which a share p of v lies (p = 1: the largest; 0 when v is empty).
+double percentile(std::vector<double> v, double p) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[std::min(v.size() - 1, size_t(p * double(v.size())))];
+}
+
+// One tracer's figures on a view, as written: means, 95th percentiles and maxima per ray.
+nlohmann::json method_figures(const RayFigures& results, double ns_per_ray) {
+  std::vector<double> it(results.iterations.begin(), results.iterations.end());
+  double it_sum = 0, err_sum = 0;
+  for (double x : it) it_sum += x;
+  for (double x : results.error) err_sum += x;
+  const double n = double(results.iterations.size());
+  return {{"iterations", {{"mean", it_sum / n}, {"p95", percentile(it, 0.95)}, {"max", percentile(it, 1.0)}}},
+          {"fetches", results.fetches / n},
+          {"skips", results.skips / n},
+          {"uv_error_texels",
+           {{"mean", err_sum / n}, {"p95", percentile(results.error, 0.95)}, {"max", percentile(results.error, 1.0)}}},
+          {"wrong_layer", double(results.wrong_layer) / n},
+          {"past_hit", double(results.past_hit) / n},
+          {"max_overshoot_voxels", results.overshoot},
+          {"ns_per_ray", ns_per_ray}};
+}
+
+// Runs one tracer on every ray of a view and returns its figures; Donnelly's iterations
+// are kept (donnelly_iterations, per ray) for the refined map's per-ray gate.
+nlohmann::json measure_method(const Method& method, const modules::ParallaxMaps& maps, const View& view,
+                              const core::Texture& height, std::vector<int>& donnelly_iterations) {
+  const double W = height.width, H = height.height;
+  double ns = 0;
+  const std::vector<modules::ParallaxTrace> traces = trace_rays(method, maps, view, W, H, &ns);
+  const RayFigures results = compare_with_exact(traces, view, W, H, method.name == "refined", donnelly_iterations);
+  nlohmann::json figures = method_figures(results, ns);
+  if (method.name == "donnelly") donnelly_iterations = results.iterations;
+  if (method.name == "refined") figures["rays_over_donnelly"] = results.more_than_donnelly;
+  return figures;
+}
+
+// Writes the figures as JSON to `path` (nothing when it is empty).
+void write_figures(const std::string& path, const nlohmann::json& out) {
+  if (path.empty()) return;
+  std::ofstream f(path);
+  f << out.dump(2) << "\n";
+  if (!f) throw core::InputError(path, "--json", "cannot be written");
+}
+
+// A short table on the terminal: iterations and error per method and view.
+void print_table(const nlohmann::json& views) {
+  for (const auto& view : views) {
+    std::cout << "elevation " << view["elevation_deg"].get<double>() << "° (tracer "
+              << view["tracer_elevation_deg"].get<double>() << "°)\n";
+    for (const auto& [name, m] : view["methods"].items())
+      std::cout << "  " << name << ": iterations " << m["iterations"]["mean"].get<double>() << " / "
+                << m["iterations"]["p95"].get<double>() << " / " << m["iterations"]["max"].get<double>()
+                << " (skips " << m["skips"].get<double>() << ")"
+                << ", uv error " << m["uv_error_texels"]["mean"].get<double>() << " / "
+                << m["uv_error_texels"]["p95"].get<double>() << " / " << m["uv_error_texels"]["max"].get<double>()
+                << " texels, wrong layer " << m["wrong_layer"].get<double>() << ", overshoot "
+                << m["max_overshoot_voxels"].get<double>() << " voxels, " << m["ns_per_ray"].get<double>() << " ns"
+                << (m.contains("rays_over_donnelly") ? ", rays over donnelly " + m["rays_over_donnelly"].dump() : "")
+                << "\n";
+  }
+}
+
+}  // namespace
+
+Command add_parallax_bench_command(CLI::App& app) {
+  auto opt = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand(
       "parallax-bench", "every parallax tracer against the exact hit, on parallel rays over a material's height map");
   opt->scene.add_to(*cmd);
@@ -131,152 +357,24 @@ Command add_parallax_bench_command(CLI::App& app) {
   cmd->add_option("--json", opt->json, "write the figures as JSON");
   return {cmd, [opt]() {
             const core::Scene scene = opt->scene.load();
-            const core::Material* mat = nullptr;
-            for (const auto& m : scene.materials)
-              if (m.path == core::ShadingPath::Parallax && (opt->material.empty() || m.name == opt->material)) {
-                mat = &m;
-                break;
-              }
-            if (!mat)
-              throw core::InputError(scene.file, "materials",
-                                     "no parallax material" + (opt->material.empty() ? "" : " named " + opt->material));
-            const core::Texture& height = scene.textures[size_t(mat->height_map)];
-            const core::ParallaxSettings base = mat->parallax;
-            if (!(base.depth > 0)) throw core::InputError(scene.file, "parallax.depth", "must be > 0 to measure");
-            // The methods as a designer would line them up; the maps built once each.
-            struct Method {
-              std::string name;
-              core::ParallaxSettings s;
-            };
-            std::vector<Method> methods;
-            auto with = [&](const char* name, core::ParallaxMethod m, bool refined = true) {
-              core::ParallaxSettings s = base;
-              s.method = m, s.refined = refined;
-              methods.push_back({name, s});
-            };
-            with("offset", core::ParallaxMethod::Offset);
-            with("steep", core::ParallaxMethod::Steep);
-            with("pom", core::ParallaxMethod::Pom);
-            with("relief", core::ParallaxMethod::Relief);
-            with("donnelly", core::ParallaxMethod::Distance, false);
-            with("refined", core::ParallaxMethod::Distance, true);
-            with("cone", core::ParallaxMethod::Cone);
-            nlohmann::json out = {{"scene", scene.file},
-                                  {"material", mat->name},
-                                  {"height_map", height.name},
-                                  {"size", {height.width, height.height}},
-                                  {"depth", base.depth},
-                                  {"slices", base.slices},
-                                  {"min_elevation_deg", base.min_elevation_deg},
-                                  {"margin", base.margin},
-                                  {"max_iterations", base.max_iterations},
-                                  {"layers", {base.layers_min, base.layers_max}},
-                                  {"binary_steps", base.binary_steps},
-                                  {"azimuth_deg", opt->azimuth},
-                                  {"rays", opt->rays * opt->rays}};
-            std::vector<modules::ParallaxMaps> maps;
-            for (const auto& m : methods) {
-              maps.push_back(modules::build_parallax_maps(height, m.s, scene.file));
-              out["precompute_s"][m.name] = maps.back().precompute_s;
-            }
-            const double pi = 3.14159265358979323846;
+            const core::Material& mat = parallax_material(scene, opt->material);
+            const core::Texture& height = scene.textures[size_t(mat.height_map)];
+            const core::ParallaxSettings base = mat.parallax;
+            const std::vector<Method> methods = methods_to_compare(base);
+            nlohmann::json out = bench_header(*opt, scene, mat, height);
+            const std::vector<modules::ParallaxMaps> maps = build_maps(methods, height, scene.file, out);
             std::vector<int> donnelly_iterations;  // per ray, for the refined map's per-ray gate
-            const double W = height.width, H = height.height, D = base.slices;
             for (double elevation : opt->elevations) {
-              const double el = elevation * pi / 180, az = opt->azimuth * pi / 180;
-              const glm::dvec3 d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), -std::sin(el));
-              // The ray's length in the tracer's space per unit of the golden model's t.
-              const double tracer_length = glm::length(glm::dvec3(d.x * W, d.y * H, d.z * D / base.depth));
-              nlohmann::json view = {{"elevation_deg", elevation},
-                                     {"tracer_elevation_deg", std::asin(-d.z * D / base.depth / tracer_length) * 180 / pi}};
-              // The entry points: a grid over the map, jittered within its cells (fixed hash).
-              std::vector<glm::dvec2> entries;
-              std::vector<reference::ParallaxHit> exact;
-              for (int j = 0; j < opt->rays; ++j)
-                for (int i = 0; i < opt->rays; ++i) {
-                  uint32_t x = uint32_t(i) * 0x9E3779B1u ^ uint32_t(j) * 0x85EBCA77u;
-                  x ^= x >> 15, x *= 0x2C1B3C6Du, x ^= x >> 12;
-                  const double jx = (x & 0xFFFF) / 65536.0, jy = (x >> 16) / 65536.0;
-                  entries.push_back({(i + jx) / opt->rays, (j + jy) / opt->rays});
-                  exact.push_back(reference::parallax_hit(height, entries.back(), d, base.depth));
-                }
-              for (size_t k = 0; k < methods.size(); ++k) {
-                std::vector<int> iterations(entries.size());
-                std::vector<double> error(entries.size());
-                double fetches = 0, overshoot = 0, skips = 0;
-                size_t more_than_donnelly = 0;
-                size_t wrong_layer = 0, past_hit = 0;
-                std::vector<modules::ParallaxTrace> traces(entries.size());
-                const auto start = std::chrono::steady_clock::now();
-                for (size_t r = 0; r < entries.size(); ++r)
-                  traces[r] = modules::trace_parallax(methods[k].s, maps[k], float(entries[r].x * W - 0.5),
-                                                      float((1 - entries[r].y) * H - 0.5), float(d.x), float(d.y),
-                                                      float(d.z));
-                const double ns = seconds_since(start) * 1e9 / double(entries.size());
-                for (size_t r = 0; r < entries.size(); ++r) {
-                  const auto& t = traces[r];
-                  // Back to uv, and the error in texels against the exact hit (wrapped).
-                  const double u = (t.x + 0.5) / W, v = 1 - (t.y + 0.5) / H;
-                  double eu = (u - exact[r].uv.x) * W, ev = (v - exact[r].uv.y) * H;
-                  eu -= W * std::round(eu / W), ev -= H * std::round(ev / H);
-                  error[r] = std::sqrt(eu * eu + ev * ev);
-                  iterations[r] = t.iterations;
-                  fetches += t.fetches;
-                  skips += t.skips;
-                  if (methods[k].name == "refined" && t.iterations > donnelly_iterations[r]) ++more_than_donnelly;
-                  // Where along the ray the result lies (its projection), against the hit.
-                  const double du = (u - entries[r].x) * W, dv = (v - entries[r].y) * H;
-                  const double along = (du * d.x * W + dv * d.y * H) / (d.x * W * d.x * W + d.y * H * d.y * H + 1e-300);
-                  const double past = (along - exact[r].t) * tracer_length;  // voxels past the exact hit
-                  overshoot = std::max(overshoot, past);
-                  if (past > 1e-3) ++past_hit;
-                  if ((along - exact[r].t_exit) * tracer_length > 0.01) ++wrong_layer;  // 0.01 voxel: rounding
-                }
-                auto percentile = [](std::vector<double> v, double p) {
-                  std::sort(v.begin(), v.end());
-                  return v.empty() ? 0.0 : v[std::min(v.size() - 1, size_t(p * double(v.size())))];
-                };
-                std::vector<double> it(iterations.begin(), iterations.end());
-                double it_sum = 0, err_sum = 0;
-                for (double x : it) it_sum += x;
-                for (double x : error) err_sum += x;
-                const double n = double(entries.size());
-                view["methods"][methods[k].name] = {
-                    {"iterations", {{"mean", it_sum / n}, {"p95", percentile(it, 0.95)}, {"max", percentile(it, 1.0)}}},
-                    {"fetches", fetches / n},
-                    {"skips", skips / n},
-                    {"uv_error_texels",
-                     {{"mean", err_sum / n}, {"p95", percentile(error, 0.95)}, {"max", percentile(error, 1.0)}}},
-                    {"wrong_layer", double(wrong_layer) / n},
-                    {"past_hit", double(past_hit) / n},
-                    {"max_overshoot_voxels", overshoot},
-                    {"ns_per_ray", ns}};
-                if (methods[k].name == "donnelly") donnelly_iterations = iterations;
-                if (methods[k].name == "refined") view["methods"]["refined"]["rays_over_donnelly"] = more_than_donnelly;
-              }
-              out["views"].push_back(view);
+              const View view = view_at(elevation, opt->azimuth, opt->rays, height, base);
+              nlohmann::json figures = {{"elevation_deg", elevation},
+                                        {"tracer_elevation_deg", view.tracer_elevation_deg}};
+              for (size_t k = 0; k < methods.size(); ++k)
+                figures["methods"][methods[k].name] =
+                    measure_method(methods[k], maps[k], view, height, donnelly_iterations);
+              out["views"].push_back(figures);
             }
-            if (!opt->json.empty()) {
-              std::ofstream f(opt->json);
-              f << out.dump(2) << "\n";
-              if (!f) throw core::InputError(opt->json, "--json", "cannot be written");
-            }
-            // A short table on the terminal: iterations and error per method and view.
-            for (const auto& view : out["views"]) {
-              std::cout << "elevation " << view["elevation_deg"].get<double>() << "° (tracer "
-                        << view["tracer_elevation_deg"].get<double>() << "°)\n";
-              for (const auto& [name, m] : view["methods"].items())
-                std::cout << "  " << name << ": iterations " << m["iterations"]["mean"].get<double>() << " / "
-                          << m["iterations"]["p95"].get<double>() << " / " << m["iterations"]["max"].get<double>()
-                          << " (skips " << m["skips"].get<double>() << ")"
-                          << ", uv error " << m["uv_error_texels"]["mean"].get<double>() << " / "
-                          << m["uv_error_texels"]["p95"].get<double>() << " / "
-                          << m["uv_error_texels"]["max"].get<double>() << " texels, wrong layer "
-                          << m["wrong_layer"].get<double>() << ", overshoot "
-                          << m["max_overshoot_voxels"].get<double>() << " voxels, " << m["ns_per_ray"].get<double>()
-                          << " ns" << (m.contains("rays_over_donnelly") ? ", rays over donnelly " + m["rays_over_donnelly"].dump() : "")
-                          << "\n";
-            }
+            write_figures(opt->json, out);
+            print_table(out["views"]);
             return 0;
           }};
 }

@@ -102,15 +102,159 @@ void check_writable(const std::string& path, const std::string& option) {
   core::remove_quietly(probe);
 }
 
+namespace {
+
+// The render command's options, as the command line sets them.
+struct RenderOptions {
+  SceneOptions scene;
+  std::string output = "out/frame.exr", preview, heat_map, stats, engine = "systemc";
+  float heat_max = 32;
+  bool compare = false;
+  std::string vcd, region, triangles, timeline;
+};
+
+// What the run records for inspection (waveforms, timeline, traced region and triangles),
+// from the options; throws if they name it wrongly or this build or engine cannot record it.
+modules::Inspect inspection_of(const RenderOptions& opt, const core::Scene& scene) {
+  modules::Inspect inspect;
+  inspect.vcd = opt.vcd;
+  if (!opt.stats.empty()) inspect.bin_cycles = 10000;  // utilization over time, in the statistics
+  inspect.timeline = opt.timeline;
+  if (!opt.region.empty()) parse_region(opt.region, inspect.region), inspect.region_given = true;
+  if (!opt.triangles.empty()) {
+    if (!inspect.region_given)
+      inspect.region = {0, 0, scene.camera.width - 1, scene.camera.height - 1}, inspect.region_given = true;
+    parse_triangles(opt.triangles, inspect.region);
+  }
+  if (!inspect.vcd.empty() && (inspect.vcd.size() < 5 || inspect.vcd.substr(inspect.vcd.size() - 4) != ".vcd"))
+    throw core::InputError("--vcd", inspect.vcd, "the waveform file must end in .vcd");
+  if (!modules::kTracing && (!inspect.vcd.empty() || !inspect.timeline.empty()))
+    throw core::InputError("--vcd", inspect.vcd, "this build has tracing compiled out (SHADETLM_TRACING=OFF)");
+  if (opt.engine == "loop" && (!inspect.vcd.empty() || !inspect.timeline.empty()))
+    throw core::InputError("--engine", "loop", "the plain loop has no time: waveforms and timelines need systemc");
+  return inspect;
+}
+
+// The GTKWave view written beside the waveforms ("" without waveforms).
+std::string gtkw_path_of(const std::string& vcd) {
+  return vcd.empty() ? "" : vcd.substr(0, vcd.size() - 4) + ".gtkw";
+}
+
+// The checks that can still refuse the run once its inspection is known: a heat map
+// needs something to map, and every output must be writable.
+void check_before_simulation(const RenderOptions& opt, const core::Scene& scene, const modules::Inspect& inspect) {
+  // Checked before the simulation: nothing may throw after sc_start in normal
+  // course (under ASan, unwinding past SystemC's coroutines is not supported).
+  if (!opt.heat_map.empty() &&
+      std::none_of(scene.objects.begin(), scene.objects.end(), [&](const core::Object& o) {
+        return scene.materials[size_t(o.material)].path == core::ShadingPath::Parallax;
+      }))
+    throw core::InputError("--heat-map", opt.heat_map, "the scene has no parallax material: no iterations to map");
+  check_writable(opt.output, "--output");
+  check_writable(opt.preview, "--preview");
+  check_writable(opt.heat_map, "--heat-map");
+  check_writable(opt.stats, "--stats");
+  check_writable(inspect.vcd, "--vcd");
+  check_writable(gtkw_path_of(inspect.vcd), "--vcd");
+  check_writable(inspect.timeline, "--timeline");
+}
+
+// Should a later write fail, the inspection files of this run go too.
+void take_back_inspection(const modules::Inspect& inspect) {
+  for (const std::string& path : {inspect.vcd, gtkw_path_of(inspect.vcd), inspect.timeline})
+    if (!path.empty()) core::remove_quietly(path);
+}
+
+// Renders the scene on the engine named ("loop" or "systemc"), showing progress meanwhile.
+modules::RenderResult render_with_progress(const core::Scene& scene, const std::string& engine,
+                                           modules::Inspect inspect) {
+  // A progress bar on stderr, only when it is a terminal (and the render is long).
+  ProgressBar bar("render");
+  if (bar.enabled()) inspect.progress = [&](double share) { bar.show(share); };
+  modules::RenderResult r =
+      engine == "loop" ? modules::render_loop(scene, inspect) : modules::render_systemc(scene, inspect);
+  bar.done();
+  return r;
+}
+
+// The run's statistics: the engine's, the scene and its resolved configuration, and with
+// --compare-reference the error against the golden model (whose time goes to *reference_s).
+nlohmann::json statistics_of(const RenderOptions& opt, const modules::RenderResult& r, const core::Scene& scene,
+                             double* reference_s) {
+  nlohmann::json stats = r.stats_json();
+  stats["scene"] = scene.file;
+  stats["config"] = settings_of(scene).resolved();
+  if (opt.compare) stats["error"] = error_against_reference(r.frame, scene, reference_s);
+  return stats;
+}
+
+// Writes the frame, its preview and heat map and the statistics; on failure takes back
+// what this run wrote, inspection files included, and rethrows.
+void write_outputs(const RenderOptions& opt, const core::Frame& frame, const nlohmann::json& stats,
+                   const modules::Inspect& inspect) {
+  // Frame, preview and statistics appear together or not at all: the
+  // statistics go to a temporary first and are renamed after the frame.
+  const std::string stats_tmp = opt.stats.empty() ? "" : core::temporary_path_for(opt.stats);
+  try {
+    if (!stats_tmp.empty()) {
+      std::ofstream out(stats_tmp);
+      out << stats.dump(2) << "\n";
+      if (!out) throw std::runtime_error(opt.stats + ": cannot write the statistics");
+    }
+    write_frame(frame, opt.output, opt.preview, opt.heat_map, opt.heat_max);
+  } catch (...) {
+    if (!stats_tmp.empty()) core::remove_quietly(stats_tmp);
+    take_back_inspection(inspect);
+    throw;
+  }
+  if (!stats_tmp.empty()) {
+    try {
+      core::rename_into_place(stats_tmp, opt.stats);
+    } catch (...) {  // take the frame back: no output of a run that failed
+      core::remove_quietly(opt.output);
+      if (!opt.preview.empty()) core::remove_quietly(opt.preview);
+      if (!opt.heat_map.empty()) core::remove_quietly(opt.heat_map);
+      take_back_inspection(inspect);
+      throw;
+    }
+  }
+}
+
+// The summary's lines on the error against the golden model (stats["error"]).
+void print_error(const nlohmann::json& e, double reference_s) {
+  for (const char* layer : {"rgb", "z", "n"})
+    if (e.contains(layer))
+      std::cout << "  error " << layer << ": max " << e[layer]["max"] << " at (" << e[layer]["max_at"][0] << ", "
+                << e[layer]["max_at"][1] << "), rmse " << e[layer]["rmse"] << ", psnr " << e[layer]["psnr"]
+                << " dB\n";
+  std::cout << "  coverage mismatches: " << e["coverage_mismatches"] << " (golden model: " << reference_s
+            << " s)\n";
+}
+
+// The run's summary on stdout: what was rendered, how long it took, the error and what was written.
+void print_summary(const RenderOptions& opt, const core::Scene& scene, const modules::RenderResult& r,
+                   const nlohmann::json& stats, const modules::Inspect& inspect, double reference_s) {
+  std::cout << "render (" << r.engine << "): " << scene.file << ", " << scene.camera.width << "x"
+            << scene.camera.height << ", " << r.triangles_drawn << " triangles, " << r.pixels_shaded
+            << " shaded pixels, " << r.wall_s << " s\n";
+  if (r.frame_cycles > 0)
+    std::cout << "  " << r.frame_cycles << " cycles at " << r.clock_mhz << " MHz ("
+              << stats["sim_time_s"].get<double>() * 1e3 << " ms simulated), bottleneck "
+              << stats["bottleneck"].get<std::string>() << "\n";
+  if (opt.compare) print_error(stats["error"], reference_s);
+  if (!inspect.vcd.empty())
+    std::cout << "  traced " << r.trace_records << " pixel outputs into " << inspect.vcd << " (view: gtkwave "
+              << inspect.vcd << " " << inspect.vcd.substr(0, inspect.vcd.size() - 4) << ".gtkw)\n";
+  if (!inspect.timeline.empty()) std::cout << "  timeline: " << inspect.timeline << "\n";
+  std::cout << "  wrote " << opt.output << (opt.preview.empty() ? "" : " and " + opt.preview)
+            << (opt.heat_map.empty() ? "" : " and " + opt.heat_map)
+            << (opt.stats.empty() ? "" : " and " + opt.stats) << "\n";
+}
+
+}  // namespace
+
 Command add_render_command(CLI::App& app) {
-  struct Options {
-    SceneOptions scene;
-    std::string output = "out/frame.exr", preview, heat_map, stats, engine = "systemc";
-    float heat_max = 32;
-    bool compare = false;
-    std::string vcd, region, triangles, timeline;
-  };
-  auto opt = std::make_shared<Options>();
+  auto opt = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand("render", "render a scene through the SystemC/TLM-2.0 pipeline");
   opt->scene.add_to(*cmd);
   cmd->add_option("-o,--output", opt->output, "EXR frame to write")->capture_default_str();
@@ -132,105 +276,14 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--timeline", opt->timeline, "transaction timeline as Chrome trace-event JSON (Perfetto)");
   return {cmd, [opt]() {
             const core::Scene scene = opt->scene.load();
-            modules::Inspect inspect;
-            inspect.vcd = opt->vcd;
-            if (!opt->stats.empty()) inspect.bin_cycles = 10000;  // utilization over time, in the statistics
-            inspect.timeline = opt->timeline;
-            if (!opt->region.empty()) parse_region(opt->region, inspect.region), inspect.region_given = true;
-            if (!opt->triangles.empty()) {
-              if (!inspect.region_given)
-                inspect.region = {0, 0, scene.camera.width - 1, scene.camera.height - 1}, inspect.region_given = true;
-              parse_triangles(opt->triangles, inspect.region);
-            }
-            if (!inspect.vcd.empty() && (inspect.vcd.size() < 5 || inspect.vcd.substr(inspect.vcd.size() - 4) != ".vcd"))
-              throw core::InputError("--vcd", inspect.vcd, "the waveform file must end in .vcd");
-            if (!modules::kTracing && (!inspect.vcd.empty() || !inspect.timeline.empty()))
-              throw core::InputError("--vcd", inspect.vcd, "this build has tracing compiled out (SHADETLM_TRACING=OFF)");
-            if (opt->engine == "loop" && (!inspect.vcd.empty() || !inspect.timeline.empty()))
-              throw core::InputError("--engine", "loop", "the plain loop has no time: waveforms and timelines need systemc");
-            // Checked before the simulation: nothing may throw after sc_start in normal
-            // course (under ASan, unwinding past SystemC's coroutines is not supported).
-            if (!opt->heat_map.empty() &&
-                std::none_of(scene.objects.begin(), scene.objects.end(), [&](const core::Object& o) {
-                  return scene.materials[size_t(o.material)].path == core::ShadingPath::Parallax;
-                }))
-              throw core::InputError("--heat-map", opt->heat_map,
-                                     "the scene has no parallax material: no iterations to map");
-            const std::string gtkw = inspect.vcd.empty() ? "" : inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw";
-            check_writable(opt->output, "--output");
-            check_writable(opt->preview, "--preview");
-            check_writable(opt->heat_map, "--heat-map");
-            check_writable(opt->stats, "--stats");
-            check_writable(inspect.vcd, "--vcd");
-            check_writable(gtkw, "--vcd");
-            check_writable(inspect.timeline, "--timeline");
-            // Should a later write fail, the inspection files of this run go too.
-            auto take_back_inspection = [&]() {
-              for (const std::string& path : {inspect.vcd, gtkw, inspect.timeline})
-                if (!path.empty()) core::remove_quietly(path);
-            };
-            // A progress bar on stderr, only when it is a terminal (and the render is long).
-            ProgressBar bar("render");
-            if (bar.enabled()) inspect.progress = [&](double share) { bar.show(share); };
-            modules::RenderResult r = opt->engine == "loop" ? modules::render_loop(scene, inspect)
-                                                            : modules::render_systemc(scene, inspect);
-            bar.done();
-            nlohmann::json stats = r.stats_json();
-            stats["scene"] = scene.file;
-            stats["config"] = settings_of(scene).resolved();
+            const modules::Inspect inspect = inspection_of(*opt, scene);
+            check_before_simulation(*opt, scene, inspect);
+            modules::RenderResult r = render_with_progress(scene, opt->engine, inspect);
             double reference_s = 0;
-            if (opt->compare) stats["error"] = error_against_reference(r.frame, scene, &reference_s);
+            const nlohmann::json stats = statistics_of(*opt, r, scene, &reference_s);
             describe(r.frame, scene, opt->scene, opt->engine == "loop" ? "pipeline-loop" : "pipeline");
-            // Frame, preview and statistics appear together or not at all: the
-            // statistics go to a temporary first and are renamed after the frame.
-            const std::string stats_tmp = opt->stats.empty() ? "" : core::temporary_path_for(opt->stats);
-            try {
-              if (!stats_tmp.empty()) {
-                std::ofstream out(stats_tmp);
-                out << stats.dump(2) << "\n";
-                if (!out) throw std::runtime_error(opt->stats + ": cannot write the statistics");
-              }
-              write_frame(r.frame, opt->output, opt->preview, opt->heat_map, opt->heat_max);
-            } catch (...) {
-              if (!stats_tmp.empty()) core::remove_quietly(stats_tmp);
-              take_back_inspection();
-              throw;
-            }
-            if (!stats_tmp.empty()) {
-              try {
-                core::rename_into_place(stats_tmp, opt->stats);
-              } catch (...) {  // take the frame back: no output of a run that failed
-                core::remove_quietly(opt->output);
-                if (!opt->preview.empty()) core::remove_quietly(opt->preview);
-                if (!opt->heat_map.empty()) core::remove_quietly(opt->heat_map);
-                take_back_inspection();
-                throw;
-              }
-            }
-            std::cout << "render (" << r.engine << "): " << scene.file << ", " << scene.camera.width << "x"
-                      << scene.camera.height << ", " << r.triangles_drawn << " triangles, " << r.pixels_shaded
-                      << " shaded pixels, " << r.wall_s << " s\n";
-            if (r.frame_cycles > 0)
-              std::cout << "  " << r.frame_cycles << " cycles at " << r.clock_mhz << " MHz ("
-                        << stats["sim_time_s"].get<double>() * 1e3 << " ms simulated), bottleneck "
-                        << stats["bottleneck"].get<std::string>() << "\n";
-            if (opt->compare) {
-              const auto& e = stats["error"];
-              for (const char* layer : {"rgb", "z", "n"})
-                if (e.contains(layer))
-                  std::cout << "  error " << layer << ": max " << e[layer]["max"] << " at ("
-                            << e[layer]["max_at"][0] << ", " << e[layer]["max_at"][1] << "), rmse "
-                            << e[layer]["rmse"] << ", psnr " << e[layer]["psnr"] << " dB\n";
-              std::cout << "  coverage mismatches: " << e["coverage_mismatches"] << " (golden model: "
-                        << reference_s << " s)\n";
-            }
-            if (!inspect.vcd.empty())
-              std::cout << "  traced " << r.trace_records << " pixel outputs into " << inspect.vcd << " (view: gtkwave "
-                        << inspect.vcd << " " << inspect.vcd.substr(0, inspect.vcd.size() - 4) << ".gtkw)\n";
-            if (!inspect.timeline.empty()) std::cout << "  timeline: " << inspect.timeline << "\n";
-            std::cout << "  wrote " << opt->output << (opt->preview.empty() ? "" : " and " + opt->preview)
-                      << (opt->heat_map.empty() ? "" : " and " + opt->heat_map)
-                      << (opt->stats.empty() ? "" : " and " + opt->stats) << "\n";
+            write_outputs(*opt, r.frame, stats, inspect);
+            print_summary(*opt, scene, r, stats, inspect, reference_s);
             return 0;
           }};
 }
