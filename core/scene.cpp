@@ -315,6 +315,207 @@ void check_material_path(JsonReader& r, const Material& m, const std::vector<Tex
   usable(m.normal_map, "normal_map");
 }
 
+// The camera object: where it stands and looks, its field of view, resolution and
+// depth range.
+Camera read_camera(JsonReader r) {
+  Camera c;
+  c.position = position(r, "position", std::nullopt);
+  c.target = position(r, "target", std::nullopt);
+  c.up = r.vec3("up", glm::dvec3(0, 1, 0));
+  c.fov_y_deg = r.number("fov_y", 45.0, 1e-3, 179.0);
+  // Sides up to 16384 (the stress scenes' longest spans); at most 8192² pixels in all,
+  // which keeps the golden model's double-precision image within a few GB.
+  glm::ivec2 res = r.ivec2("resolution", std::nullopt, 1, 16384);
+  if (int64_t(res.x) * int64_t(res.y) > int64_t(8192) * 8192)
+    r.fail("resolution", "at most 8192 × 8192 pixels in all, got " + std::to_string(res.x) + " × " + std::to_string(res.y));
+  c.width = res.x;
+  c.height = res.y;
+  c.near = r.number("near", 0.1, 1e-9, 1e12);
+  c.far = r.number("far", 1000.0, 1e-9, 1e12);
+  c.local_viewer = r.boolean("local_viewer", true);
+  check_camera(r, c);
+  r.finish();
+  return c;
+}
+
+// One element of the lights array: a directional or a point light.
+Light read_light(JsonReader r) {
+  Light l;
+  l.type = r.choice("type", std::nullopt, {"directional", "point"}) == "point" ? Light::Type::Point
+                                                                            : Light::Type::Directional;
+  if (l.type == Light::Type::Directional) {
+    glm::dvec3 d = r.vec3("direction");
+    if (glm::length(d) < 1e-12) r.fail("direction", "the direction is zero");
+    l.direction = glm::normalize(d);
+  } else {
+    l.position = position(r, "position", std::nullopt);
+  }
+  l.color = color(r, "color", glm::dvec3(1));
+  l.intensity = r.number("intensity", 1.0, 0, 1e12);
+  r.finish();
+  return l;
+}
+
+// The textures object (if any), appended to `textures`; returns each one's index by name.
+std::map<std::string, int> read_textures(JsonReader& root, json& doc, const std::string& base_dir,
+                                         std::vector<Texture>& textures) {
+  std::map<std::string, int> texture_index;
+  if (root.has("textures")) {
+    JsonReader r = root.object("textures");
+    for (auto it = doc["textures"].begin(); it != doc["textures"].end(); ++it) {
+      texture_index[it.key()] = static_cast<int>(textures.size());
+      textures.push_back(read_texture(r.object(it.key()), it.key(), base_dir));
+    }
+    r.finish();
+  }
+  return texture_index;
+}
+
+// Materials' references to textures by name, resolved to indices in the scene's textures.
+struct TextureRefs {
+  const std::map<std::string, int>& texture_index;  // the textures object's, by name
+  std::vector<Texture>& textures;                    // the scene's, grown by decoded copies
+  std::map<int, int> decoded;  // sRGB texture → its linear copy, made once
+
+  // The texture that `key` names (-1 if absent); a colour texture stored sRGB gives its
+  // linear copy.
+  int read(JsonReader& r, const std::string& key, bool colour) {
+    if (!r.has(key)) return -1;
+    std::string tn = r.string(key);
+    auto it = texture_index.find(tn);
+    if (it == texture_index.end()) r.fail(key, "no texture named \"" + tn + "\" in textures");
+    if (colour && textures[it->second].srgb) {
+      // A colour texture is used decoded to linear; a height map reads stored values.
+      auto [d, fresh] = decoded.emplace(it->second, static_cast<int>(textures.size()));
+      if (fresh) textures.push_back(decode_srgb(textures[it->second]));
+      return d->second;
+    }
+    return it->second;
+  }
+};
+
+// A material's parallax object: the tracing method and its settings, over the defaults in `ps`.
+void read_parallax(JsonReader pr, ParallaxSettings& ps) {
+  const std::string method =
+      pr.choice("method", std::string("distance"), {"offset", "steep", "pom", "relief", "distance", "cone"});
+  for (ParallaxMethod pm : {ParallaxMethod::Offset, ParallaxMethod::Steep, ParallaxMethod::Pom,
+                            ParallaxMethod::Relief, ParallaxMethod::Distance, ParallaxMethod::Cone})
+    if (method == to_string(pm)) ps.method = pm;
+  ps.refined = pr.choice("map", std::string("refined"), {"refined", "donnelly"}) == "refined";
+  if (pr.has("map") && ps.method != ParallaxMethod::Distance) pr.fail("map", "only the distance method reads it");
+  // Any depth is accepted: 0 or below is documented as flat (uv unchanged).
+  ps.depth = pr.number("depth", ps.depth, -1e6, 1e6);
+  ps.slices = pr.integer("slices", ps.slices, 1, 256);
+  ps.max_iterations = pr.integer("max_iterations", ps.max_iterations, 1, 1 << 16);
+  ps.early_exit = pr.boolean("early_exit", ps.early_exit);
+  ps.layers_min = pr.integer("layers_min", ps.layers_min, 1, 4096);
+  ps.layers_max = pr.integer("layers_max", ps.layers_max, ps.layers_min, 4096);
+  ps.binary_steps = pr.integer("binary_steps", ps.binary_steps, 0, 64);
+  ps.min_elevation_deg = pr.number("min_elevation_deg", ps.min_elevation_deg, 0.1, 89);
+  ps.margin = pr.number("margin", ps.margin, 0, 64);
+  pr.finish();
+}
+
+// One member of the materials object: colours, textures, path and its settings, checked
+// against the path.
+Material read_material(JsonReader r, const std::string& name, TextureRefs& texture_refs) {
+  Material m;
+  m.name = name;
+  m.ambient = color(r, "ambient", m.ambient);
+  m.diffuse = color(r, "diffuse", m.diffuse);
+  m.specular = color(r, "specular", m.specular);
+  m.shininess = r.number("shininess", m.shininess, 0, 1e6);
+  m.texture = texture_refs.read(r, "texture", true);
+  m.height_map = texture_refs.read(r, "height_map", false);
+  m.height_scale = r.number("height_scale", 0.0, 0, 1e6);
+  if (r.has("height_scale") && m.height_map < 0)
+    r.fail("height_scale", "given without a height_map");
+  m.normal_map = texture_refs.read(r, "normal_map", false);
+  m.square_k = r.number("square_k", 1.0, kMinLength, kMaxLength);
+  m.path = parse_shading_path(r.choice("path", std::string("phong"),
+                                       {"phong", "bump-classic", "bump-tangent", "bump-square", "bump-object",
+                                        "texture-screen", "texture-object", "parallax"}));
+  if (r.has("parallax")) {
+    if (m.path != ShadingPath::Parallax) r.fail("parallax", "given, but the path is not parallax");
+    read_parallax(r.object("parallax"), m.parallax);
+  }
+  check_material_path(r, m, texture_refs.textures);
+  r.finish();
+  return m;
+}
+
+// The materials object (if any), appended to the scene's materials (textures decoded to
+// linear are appended to its textures); returns each material's index by name.
+std::map<std::string, int> read_materials(JsonReader& root, json& doc,
+                                          const std::map<std::string, int>& texture_index, Scene& s) {
+  std::map<std::string, int> material_index;
+  TextureRefs texture_refs{texture_index, s.textures, {}};
+  if (root.has("materials")) {
+    JsonReader all = root.object("materials");
+    for (auto it = doc["materials"].begin(); it != doc["materials"].end(); ++it) {
+      Material m = read_material(all.object(it.key()), it.key(), texture_refs);
+      material_index[m.name] = static_cast<int>(s.materials.size());
+      s.materials.push_back(m);
+    }
+    all.finish();
+  }
+  return material_index;
+}
+
+// An object's material: the one it names, or the built-in grey "default" (added to
+// `materials` the first time an object needs it).
+int read_material_ref(JsonReader& r, std::map<std::string, int>& material_index, std::vector<Material>& materials) {
+  if (r.has("material")) {
+    std::string mn = r.string("material");
+    auto it = material_index.find(mn);
+    if (it == material_index.end()) r.fail("material", "no material named \"" + mn + "\" in materials");
+    return it->second;
+  }
+  if (!material_index.count("default")) {  // the built-in grey
+    material_index["default"] = static_cast<int>(materials.size());
+    Material m;
+    m.name = "default";
+    materials.push_back(m);
+  }
+  return material_index["default"];
+}
+
+// Rejects a model matrix other than a rotation times a uniform scale (bump-object).
+void check_bump_object_transform(JsonReader& r, const glm::dmat4& model) {
+  // Object-space normals and object-space L, H keep their angles only under a
+  // rotation and a uniform scale (docs/bump-mapping.md).
+  const glm::dmat3 m(model);
+  const glm::dmat3 g = glm::transpose(m) * m;
+  const double scale = (g[0][0] + g[1][1] + g[2][2]) / 3;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (std::abs(g[i][j] - (i == j ? scale : 0.0)) > 1e-9 * scale)
+        r.fail("transform", "bump-object needs a rotation and a uniform scale (object-space normals keep "
+                            "their angles to L and H only then); use bump-tangent");
+}
+
+// One element of the objects array: shape, name, material, transform and culling.
+// A missing material adds the built-in grey to the scene's materials.
+Object read_object(JsonReader r, std::map<std::string, int>& material_index, const std::string& base_dir,
+                   Scene& s) {
+  Object o;
+  const std::string shape = r.choice("shape", std::nullopt, {"plane", "sphere", "torus", "cube", "mesh"});
+  o.name = r.string("name", shape + std::to_string(s.objects.size()));
+  o.mesh = read_shape(r, shape, base_dir);
+  o.material = read_material_ref(r, material_index, s.materials);
+  if (r.has("transform")) o.model = read_transform(r.object("transform"));
+  o.cull_back = r.choice("cull", std::string("none"), {"none", "back"}) == "back";
+  if (s.materials[size_t(o.material)].path == ShadingPath::BumpObject) check_bump_object_transform(r, o.model);
+  r.finish();
+  return o;
+}
+
+// The pipeline object's settings (the defaults without one).
+PipelineConfig read_pipeline(JsonReader& root, const std::string& name) {
+  json pipeline = root.has("pipeline") ? root.raw("pipeline") : json();
+  return PipelineConfig::from_json(pipeline, name);
+}
+
 }  // namespace
 
 Scene load_scene_text(const std::string& text, const std::string& name, const std::string& base_dir,
@@ -328,165 +529,22 @@ Scene load_scene_text(const std::string& text, const std::string& name, const st
   JsonReader root(doc, name, "");
   if (root.integer("format", 1, 1, 1) != 1) root.fail("format", "unsupported");
 
-  {
-    JsonReader r = root.object("camera");
-    Camera& c = s.camera;
-    c.position = position(r, "position", std::nullopt);
-    c.target = position(r, "target", std::nullopt);
-    c.up = r.vec3("up", glm::dvec3(0, 1, 0));
-    c.fov_y_deg = r.number("fov_y", 45.0, 1e-3, 179.0);
-    // Sides up to 16384 (the stress scenes' longest spans); at most 8192² pixels in all,
-    // which keeps the golden model's double-precision image within a few GB.
-    glm::ivec2 res = r.ivec2("resolution", std::nullopt, 1, 16384);
-    if (int64_t(res.x) * int64_t(res.y) > int64_t(8192) * 8192)
-      r.fail("resolution", "at most 8192 × 8192 pixels in all, got " + std::to_string(res.x) + " × " + std::to_string(res.y));
-    c.width = res.x;
-    c.height = res.y;
-    c.near = r.number("near", 0.1, 1e-9, 1e12);
-    c.far = r.number("far", 1000.0, 1e-9, 1e12);
-    c.local_viewer = r.boolean("local_viewer", true);
-    check_camera(r, c);
-    r.finish();
-  }
+  s.camera = read_camera(root.object("camera"));
 
   s.ambient = color(root, "ambient", glm::dvec3(0));
   s.background = color(root, "background", glm::dvec3(0));
 
   if (root.has("lights"))
-    for (const auto& [value, path] : root.array("lights")) {
-      JsonReader r(*value, name, path);
-      Light l;
-      l.type = r.choice("type", std::nullopt, {"directional", "point"}) == "point" ? Light::Type::Point
-                                                                                : Light::Type::Directional;
-      if (l.type == Light::Type::Directional) {
-        glm::dvec3 d = r.vec3("direction");
-        if (glm::length(d) < 1e-12) r.fail("direction", "the direction is zero");
-        l.direction = glm::normalize(d);
-      } else {
-        l.position = position(r, "position", std::nullopt);
-      }
-      l.color = color(r, "color", glm::dvec3(1));
-      l.intensity = r.number("intensity", 1.0, 0, 1e12);
-      r.finish();
-      s.lights.push_back(l);
-    }
+    for (const auto& [value, path] : root.array("lights"))
+      s.lights.push_back(read_light(JsonReader(*value, name, path)));
 
-  std::map<std::string, int> texture_index;
-  if (root.has("textures")) {
-    JsonReader r = root.object("textures");
-    for (auto it = doc["textures"].begin(); it != doc["textures"].end(); ++it) {
-      texture_index[it.key()] = static_cast<int>(s.textures.size());
-      s.textures.push_back(read_texture(r.object(it.key()), it.key(), base_dir));
-    }
-    r.finish();
-  }
+  const std::map<std::string, int> texture_index = read_textures(root, doc, base_dir, s.textures);
+  std::map<std::string, int> material_index = read_materials(root, doc, texture_index, s);
 
-  std::map<std::string, int> material_index;
-  std::map<int, int> decoded;  // sRGB texture → its linear copy, made once
-  auto texture_ref = [&](JsonReader& r, const std::string& key, bool colour) {
-    if (!r.has(key)) return -1;
-    std::string tn = r.string(key);
-    auto it = texture_index.find(tn);
-    if (it == texture_index.end()) r.fail(key, "no texture named \"" + tn + "\" in textures");
-    if (colour && s.textures[it->second].srgb) {
-      // A colour texture is used decoded to linear; a height map reads stored values.
-      auto [d, fresh] = decoded.emplace(it->second, static_cast<int>(s.textures.size()));
-      if (fresh) s.textures.push_back(decode_srgb(s.textures[it->second]));
-      return d->second;
-    }
-    return it->second;
-  };
-  if (root.has("materials")) {
-    JsonReader all = root.object("materials");
-    for (auto it = doc["materials"].begin(); it != doc["materials"].end(); ++it) {
-      JsonReader r = all.object(it.key());
-      Material m;
-      m.name = it.key();
-      m.ambient = color(r, "ambient", m.ambient);
-      m.diffuse = color(r, "diffuse", m.diffuse);
-      m.specular = color(r, "specular", m.specular);
-      m.shininess = r.number("shininess", m.shininess, 0, 1e6);
-      m.texture = texture_ref(r, "texture", true);
-      m.height_map = texture_ref(r, "height_map", false);
-      m.height_scale = r.number("height_scale", 0.0, 0, 1e6);
-      if (r.has("height_scale") && m.height_map < 0)
-        r.fail("height_scale", "given without a height_map");
-      m.normal_map = texture_ref(r, "normal_map", false);
-      m.square_k = r.number("square_k", 1.0, kMinLength, kMaxLength);
-      m.path = parse_shading_path(r.choice("path", std::string("phong"),
-                                           {"phong", "bump-classic", "bump-tangent", "bump-square", "bump-object",
-                                            "texture-screen", "texture-object", "parallax"}));
-      if (r.has("parallax")) {
-        if (m.path != ShadingPath::Parallax) r.fail("parallax", "given, but the path is not parallax");
-        JsonReader pr = r.object("parallax");
-        ParallaxSettings& ps = m.parallax;
-        const std::string method =
-            pr.choice("method", std::string("distance"), {"offset", "steep", "pom", "relief", "distance", "cone"});
-        for (ParallaxMethod pm : {ParallaxMethod::Offset, ParallaxMethod::Steep, ParallaxMethod::Pom,
-                                  ParallaxMethod::Relief, ParallaxMethod::Distance, ParallaxMethod::Cone})
-          if (method == to_string(pm)) ps.method = pm;
-        ps.refined = pr.choice("map", std::string("refined"), {"refined", "donnelly"}) == "refined";
-        if (pr.has("map") && ps.method != ParallaxMethod::Distance) pr.fail("map", "only the distance method reads it");
-        // Any depth is accepted: 0 or below is documented as flat (uv unchanged).
-        ps.depth = pr.number("depth", ps.depth, -1e6, 1e6);
-        ps.slices = pr.integer("slices", ps.slices, 1, 256);
-        ps.max_iterations = pr.integer("max_iterations", ps.max_iterations, 1, 1 << 16);
-        ps.early_exit = pr.boolean("early_exit", ps.early_exit);
-        ps.layers_min = pr.integer("layers_min", ps.layers_min, 1, 4096);
-        ps.layers_max = pr.integer("layers_max", ps.layers_max, ps.layers_min, 4096);
-        ps.binary_steps = pr.integer("binary_steps", ps.binary_steps, 0, 64);
-        ps.min_elevation_deg = pr.number("min_elevation_deg", ps.min_elevation_deg, 0.1, 89);
-        ps.margin = pr.number("margin", ps.margin, 0, 64);
-        pr.finish();
-      }
-      check_material_path(r, m, s.textures);
-      r.finish();
-      material_index[m.name] = static_cast<int>(s.materials.size());
-      s.materials.push_back(m);
-    }
-    all.finish();
-  }
+  for (const auto& [value, path] : root.array("objects"))
+    s.objects.push_back(read_object(JsonReader(*value, name, path), material_index, base_dir, s));
 
-  for (const auto& [value, path] : root.array("objects")) {
-    JsonReader r(*value, name, path);
-    Object o;
-    const std::string shape = r.choice("shape", std::nullopt, {"plane", "sphere", "torus", "cube", "mesh"});
-    o.name = r.string("name", shape + std::to_string(s.objects.size()));
-    o.mesh = read_shape(r, shape, base_dir);
-    if (r.has("material")) {
-      std::string mn = r.string("material");
-      auto it = material_index.find(mn);
-      if (it == material_index.end()) r.fail("material", "no material named \"" + mn + "\" in materials");
-      o.material = it->second;
-    } else {
-      if (!material_index.count("default")) {  // the built-in grey
-        material_index["default"] = static_cast<int>(s.materials.size());
-        Material m;
-        m.name = "default";
-        s.materials.push_back(m);
-      }
-      o.material = material_index["default"];
-    }
-    if (r.has("transform")) o.model = read_transform(r.object("transform"));
-    o.cull_back = r.choice("cull", std::string("none"), {"none", "back"}) == "back";
-    if (s.materials[size_t(o.material)].path == ShadingPath::BumpObject) {
-      // Object-space normals and object-space L, H keep their angles only under a
-      // rotation and a uniform scale (docs/bump-mapping.md).
-      const glm::dmat3 m(o.model);
-      const glm::dmat3 g = glm::transpose(m) * m;
-      const double scale = (g[0][0] + g[1][1] + g[2][2]) / 3;
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-          if (std::abs(g[i][j] - (i == j ? scale : 0.0)) > 1e-9 * scale)
-            r.fail("transform", "bump-object needs a rotation and a uniform scale (object-space normals keep "
-                                "their angles to L and H only then); use bump-tangent");
-    }
-    r.finish();
-    s.objects.push_back(std::move(o));
-  }
-
-  json pipeline = root.has("pipeline") ? root.raw("pipeline") : json();
-  s.pipeline = PipelineConfig::from_json(pipeline, name);
+  s.pipeline = read_pipeline(root, name);
   root.finish();
   return s;
 }

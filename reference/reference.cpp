@@ -139,9 +139,9 @@ glm::dvec3 bump_normal(const core::Scene& scene, const core::Object& object, con
   return world;
 }
 
-}  // namespace
-
-Image render(const core::Scene& scene) {
+// An image of the camera's size with nothing drawn: the background colour, alpha 0,
+// infinite depth, a zero normal.
+Image blank_image(const core::Scene& scene) {
   const core::Camera& cam = scene.camera;
   Image img;
   img.width = cam.width;
@@ -151,105 +151,225 @@ Image render(const core::Scene& scene) {
   img.alpha.assign(n, 0.0);
   img.depth.assign(n, std::numeric_limits<double>::infinity());
   img.normal.assign(n, glm::dvec3(0));
+  return img;
+}
 
-  const glm::dmat4 view_projection = cam.projection() * cam.view();
+// The camera as the golden model uses it: world → clip, the image size, and the rays
+// through the pixel centres.
+struct View {
+  glm::dmat4 view_projection;
+  int width, height;               // the image's, in pixels
+  double tan_half, aspect;         // tan(fov_y / 2), width / height
+  glm::dvec3 eye, fwd, right, up;  // the camera's position and unit axes
+};
+
+// The view of the scene's camera.
+View make_view(const core::Camera& cam) {
+  View view;
+  view.view_projection = cam.projection() * cam.view();
+  view.width = cam.width;
+  view.height = cam.height;
   // The ray through a pixel centre: eye + t·dir with dir·forward = 1, so that t is the
   // eye-space depth of the point it reaches.
-  const double tan_half = std::tan(glm::radians(cam.fov_y_deg) / 2);
-  const double aspect = double(cam.width) / cam.height;
-  const glm::dvec3 eye = cam.position, fwd = cam.forward(), right = cam.right(), up = cam.true_up();
+  view.tan_half = std::tan(glm::radians(cam.fov_y_deg) / 2);
+  view.aspect = double(cam.width) / cam.height;
+  view.eye = cam.position, view.fwd = cam.forward(), view.right = cam.right(), view.up = cam.true_up();
+  return view;
+}
 
-  for (const core::Object& object : scene.objects) {
-    const core::Mesh mesh = core::to_world(object);
-    const core::Material& material = scene.materials[object.material];
-    for (const auto& tri : mesh.triangles) {
-      const glm::dvec3 P[3] = {mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]};
-      const glm::dvec3 Ng = glm::cross(P[1] - P[0], P[2] - P[0]);
-      const double Ng2 = glm::dot(Ng, Ng);
-      if (!(Ng2 > 0)) continue;
-      // Pu, Pv of the triangle: P1 − P0 = Pu du1 + Pv dv1, P2 − P0 = Pu du2 + Pv dv2
-      // (zero where the uv triangle has no area).
-      glm::dvec3 Pu(0), Pv(0);
-      double sign = 1;  // −1: uv mirrored against the normals
-      const bool parallax = material.path == core::ShadingPath::Parallax;
-      if (core::bump_path(material.path) || parallax) {
-        const glm::dvec2 t1 = mesh.uvs[tri.y] - mesh.uvs[tri.x], t2 = mesh.uvs[tri.z] - mesh.uvs[tri.x];
-        const double det = t1.x * t2.y - t2.x * t1.y;
-        if (det != 0) Pu = ((P[1] - P[0]) * t2.y - (P[2] - P[0]) * t1.y) / det, Pv = ((P[2] - P[0]) * t1.x - (P[1] - P[0]) * t2.x) / det;
-        const glm::dvec3 normals = mesh.normals[tri.x] + mesh.normals[tri.y] + mesh.normals[tri.z];
-        if (glm::dot(glm::cross(Pu, Pv), normals) < 0) sign = -1;
-      }
-      const auto poly = core::clip_triangle(view_projection * glm::dvec4(P[0], 1),
-                                            view_projection * glm::dvec4(P[1], 1),
-                                            view_projection * glm::dvec4(P[2], 1));
-      for (size_t k = 1; k + 1 < poly.size(); ++k) {
-        core::SnappedTriangle st;
-        if (!core::snap_triangle(core::to_screen(poly[0].clip, img.width, img.height),
-                                 core::to_screen(poly[k].clip, img.width, img.height),
-                                 core::to_screen(poly[k + 1].clip, img.width, img.height),
-                                 img.width, img.height, st))
-          continue;
-        if (object.cull_back && !st.front_facing) continue;
-        for (int py = st.y0; py <= st.y1; ++py) {
-          const auto [x_begin, x_end] = st.row_span(py);
-          for (int px = x_begin; px < x_end; ++px) {
-            const double sx = (px + 0.5) / img.width * 2 - 1, sy = 1 - (py + 0.5) / img.height * 2;
-            const glm::dvec3 dir = fwd + right * (sx * tan_half * aspect) + up * (sy * tan_half);
-            const double denom = glm::dot(dir, Ng);
-            if (denom == 0) continue;  // the ray runs inside the triangle's plane
-            double t = glm::dot(P[0] - eye, Ng) / denom;
-            glm::dvec3 X = eye + dir * t;
-            // Barycentric coordinates of X: sub-triangle areas over the whole.
-            double b0 = glm::dot(glm::cross(P[1] - X, P[2] - X), Ng) / Ng2;
-            double b1 = glm::dot(glm::cross(P[2] - X, P[0] - X), Ng) / Ng2;
-            double b2 = 1 - b0 - b1;
-            if (!(t > 0)) {
-              // Snapping can cover a pixel centre just outside the triangle; near the
-              // plane's vanishing line its ray meets the plane far away or behind the
-              // eye. Take the nearest point of the triangle instead (clamped weights).
-              b0 = std::max(b0, 0.0), b1 = std::max(b1, 0.0), b2 = std::max(b2, 0.0);
-              const double sum = b0 + b1 + b2;
-              b0 /= sum, b1 /= sum, b2 /= sum;
-              X = b0 * P[0] + b1 * P[1] + b2 * P[2];
-              t = glm::dot(X - eye, fwd);
-            }
-            const size_t i = img.index(px, py);
-            if (!(t < img.depth[i])) continue;
-            const glm::dvec3 N = glm::normalize(b0 * mesh.normals[tri.x] + b1 * mesh.normals[tri.y] +
-                                                b2 * mesh.normals[tri.z]);
-            const glm::dvec2 uv = b0 * mesh.uvs[tri.x] + b1 * mesh.uvs[tri.y] + b2 * mesh.uvs[tri.z];
-            img.depth[i] = t;
-            img.alpha[i] = 1;
-            glm::dvec3 tex(1);
-            glm::dvec2 tex_uv = uv;
-            if (parallax && glm::length(glm::cross(Pu, Pv)) > 0) {
-              // The view ray in the relief's frame: Pu, Pv and the normal on the side of
-              // the vertex normals, scaled to one uv unit (docs/parallax.md).
-              const glm::dvec3 across = glm::cross(Pu, Pv);
-              const double area = glm::length(across);
-              const glm::dmat3 frame(Pu, Pv, sign * across / area * std::sqrt(area));
-              const glm::dvec3 d = glm::inverse(frame) * (X - eye);
-              tex_uv = parallax_hit(scene.textures[material.height_map], uv, d, material.parallax.depth).uv;
-            }
-            if (material.path == core::ShadingPath::TextureScreen || material.path == core::ShadingPath::TextureObject) {
-              const glm::dvec2 uvs[3] = {mesh.uvs[tri.x], mesh.uvs[tri.y], mesh.uvs[tri.z]};
-              tex = footprint_average(scene.textures[material.texture], px, py, eye, fwd, right * (tan_half * aspect),
-                                      up * tan_half, P, Ng, uvs, uv, img.width, img.height);
-            } else if (material.texture >= 0) {
-              tex = glm::dvec3(scene.textures[material.texture].bilinear(tex_uv));
-            }
-            if (core::bump_path(material.path)) {
-              const glm::dvec3 bumped = bump_normal(scene, object, material, N, uv, Pu, Pv, sign, img.normal[i]);
-              img.color[i] = shade(scene, material, X, bumped, tex);
-            } else {
-              img.normal[i] = N;
-              img.color[i] = shade(scene, material, X, N, tex);
-            }
-          }
-        }
-      }
+// A triangle of an object's world-space mesh, with what its pixels need.
+struct WorldTriangle {
+  glm::dvec3 P[3];    // the vertices' positions
+  glm::dvec3 N[3];    // the vertices' unit normals
+  glm::dvec2 uv[3];   // the vertices' texture coordinates
+  glm::dvec3 Ng;      // (P1 − P0) × (P2 − P0), not normalized
+  double Ng2;         // Ng · Ng
+  glm::dvec3 Pu, Pv;  // ∂P/∂u, ∂P/∂v (bump and parallax paths; else 0)
+  double sign;        // −1: uv mirrored against the normals
+};
+
+// Triangle `indices` of `mesh`, with the position derivatives where `material`'s path
+// needs them; false for a triangle without area (nothing to draw).
+bool setup_triangle(const core::Mesh& mesh, const glm::u32vec3& indices, const core::Material& material,
+                    WorldTriangle& tri) {
+  auto& P = tri.P;
+  P[0] = mesh.positions[indices.x], P[1] = mesh.positions[indices.y], P[2] = mesh.positions[indices.z];
+  tri.Ng = glm::cross(P[1] - P[0], P[2] - P[0]);
+  tri.Ng2 = glm::dot(tri.Ng, tri.Ng);
+  if (!(tri.Ng2 > 0)) return false;
+  tri.N[0] = mesh.normals[indices.x], tri.N[1] = mesh.normals[indices.y], tri.N[2] = mesh.normals[indices.z];
+  tri.uv[0] = mesh.uvs[indices.x], tri.uv[1] = mesh.uvs[indices.y], tri.uv[2] = mesh.uvs[indices.z];
+  // Pu, Pv of the triangle: P1 − P0 = Pu du1 + Pv dv1, P2 − P0 = Pu du2 + Pv dv2
+  // (zero where the uv triangle has no area).
+  tri.Pu = glm::dvec3(0), tri.Pv = glm::dvec3(0);
+  tri.sign = 1;
+  if (core::bump_path(material.path) || material.path == core::ShadingPath::Parallax) {
+    const glm::dvec2 t1 = tri.uv[1] - tri.uv[0], t2 = tri.uv[2] - tri.uv[0];
+    const double det = t1.x * t2.y - t2.x * t1.y;
+    if (det != 0) {
+      tri.Pu = ((P[1] - P[0]) * t2.y - (P[2] - P[0]) * t1.y) / det;
+      tri.Pv = ((P[2] - P[0]) * t1.x - (P[1] - P[0]) * t2.x) / det;
+    }
+    const glm::dvec3 normals = tri.N[0] + tri.N[1] + tri.N[2];
+    if (glm::dot(glm::cross(tri.Pu, tri.Pv), normals) < 0) tri.sign = -1;
+  }
+  return true;
+}
+
+// A pixel centre of a triangle: the depth t of the point X where its ray meets the
+// triangle's plane, X, and X's barycentric coordinates.
+struct Fragment {
+  int px, py;
+  double t;
+  glm::dvec3 X;
+  double b0, b1, b2;
+};
+
+// Where the ray through the centre of pixel (px, py) meets the triangle's plane; false
+// where it runs inside the plane.
+bool make_fragment(const View& view, const WorldTriangle& tri, int px, int py, Fragment& frag) {
+  const glm::dvec3& eye = view.eye;
+  const auto& P = tri.P;
+  const glm::dvec3& Ng = tri.Ng;
+  const double sx = (px + 0.5) / view.width * 2 - 1, sy = 1 - (py + 0.5) / view.height * 2;
+  const glm::dvec3 dir =
+      view.fwd + view.right * (sx * view.tan_half * view.aspect) + view.up * (sy * view.tan_half);
+  const double denom = glm::dot(dir, Ng);
+  if (denom == 0) return false;  // the ray runs inside the triangle's plane
+  double t = glm::dot(P[0] - eye, Ng) / denom;
+  glm::dvec3 X = eye + dir * t;
+  // Barycentric coordinates of X: sub-triangle areas over the whole.
+  double b0 = glm::dot(glm::cross(P[1] - X, P[2] - X), Ng) / tri.Ng2;
+  double b1 = glm::dot(glm::cross(P[2] - X, P[0] - X), Ng) / tri.Ng2;
+  double b2 = 1 - b0 - b1;
+  if (!(t > 0)) {
+    // Snapping can cover a pixel centre just outside the triangle; near the
+    // plane's vanishing line its ray meets the plane far away or behind the
+    // eye. Take the nearest point of the triangle instead (clamped weights).
+    b0 = std::max(b0, 0.0), b1 = std::max(b1, 0.0), b2 = std::max(b2, 0.0);
+    const double sum = b0 + b1 + b2;
+    b0 /= sum, b1 /= sum, b2 /= sum;
+    X = b0 * P[0] + b1 * P[1] + b2 * P[2];
+    t = glm::dot(X - eye, view.fwd);
+  }
+  frag = {px, py, t, X, b0, b1, b2};
+  return true;
+}
+
+// The uv where the view ray from `eye` through X meets the relief of the material's
+// height map (parallax path).
+glm::dvec2 parallax_uv(const core::Scene& scene, const core::Material& material, const WorldTriangle& tri,
+                       const glm::dvec2& uv, const glm::dvec3& X, const glm::dvec3& eye) {
+  // The view ray in the relief's frame: Pu, Pv and the normal on the side of
+  // the vertex normals, scaled to one uv unit (docs/parallax.md).
+  const glm::dvec3 across = glm::cross(tri.Pu, tri.Pv);
+  const double area = glm::length(across);
+  const glm::dmat3 frame(tri.Pu, tri.Pv, tri.sign * across / area * std::sqrt(area));
+  const glm::dvec3 d = glm::inverse(frame) * (X - eye);
+  return parallax_hit(scene.textures[material.height_map], uv, d, material.parallax.depth).uv;
+}
+
+// The colour texture's value at a fragment with texture coordinates uv (1 without a
+// texture): the footprint average on the texturing paths, else one bilinear read (on
+// the parallax path where the view ray meets the relief).
+glm::dvec3 texture_value(const core::Scene& scene, const core::Material& material, const View& view,
+                         const WorldTriangle& tri, const Fragment& frag, const glm::dvec2& uv) {
+  glm::dvec3 tex(1);
+  glm::dvec2 tex_uv = uv;
+  if (material.path == core::ShadingPath::Parallax && glm::length(glm::cross(tri.Pu, tri.Pv)) > 0)
+    tex_uv = parallax_uv(scene, material, tri, uv, frag.X, view.eye);
+  if (material.path == core::ShadingPath::TextureScreen || material.path == core::ShadingPath::TextureObject) {
+    tex = footprint_average(scene.textures[material.texture], frag.px, frag.py, view.eye, view.fwd,
+                            view.right * (view.tan_half * view.aspect), view.up * view.tan_half, tri.P, tri.Ng,
+                            tri.uv, uv, view.width, view.height);
+  } else if (material.texture >= 0) {
+    tex = glm::dvec3(scene.textures[material.texture].bilinear(tex_uv));
+  }
+  return tex;
+}
+
+// What a drawn pixel receives besides its depth: its colour, and its unit shading
+// normal in the space its path lights in (Image::normal).
+struct ShadedPixel {
+  glm::dvec3 color, normal;
+};
+
+// Shades a fragment by its material's path: the interpolated normal and uv, the colour
+// texture's value, Blinn's perturbed normal on the bump paths, Blinn-Phong.
+ShadedPixel shade_fragment(const core::Scene& scene, const core::Object& object, const core::Material& material,
+                           const View& view, const WorldTriangle& tri, const Fragment& frag) {
+  const double b0 = frag.b0, b1 = frag.b1, b2 = frag.b2;
+  const glm::dvec3 N = glm::normalize(b0 * tri.N[0] + b1 * tri.N[1] + b2 * tri.N[2]);
+  const glm::dvec2 uv = b0 * tri.uv[0] + b1 * tri.uv[1] + b2 * tri.uv[2];
+  const glm::dvec3 tex = texture_value(scene, material, view, tri, frag, uv);
+  ShadedPixel shaded;
+  if (core::bump_path(material.path)) {
+    const glm::dvec3 bumped = bump_normal(scene, object, material, N, uv, tri.Pu, tri.Pv, tri.sign, shaded.normal);
+    shaded.color = shade(scene, material, frag.X, bumped, tex);
+  } else {
+    shaded.normal = N;
+    shaded.color = shade(scene, material, frag.X, N, tex);
+  }
+  return shaded;
+}
+
+// Writes a drawn pixel: its depth, full coverage, its normal and colour.
+void write_pixel(Image& img, size_t i, double depth, const ShadedPixel& shaded) {
+  img.depth[i] = depth;
+  img.alpha[i] = 1;
+  img.normal[i] = shaded.normal;
+  img.color[i] = shaded.color;
+}
+
+// Draws pixel (px, py) of a triangle that covers it, where it is nearer than what the
+// pixel holds (ties keep the first).
+void draw_pixel(const core::Scene& scene, const core::Object& object, const core::Material& material,
+                const View& view, const WorldTriangle& tri, int px, int py, Image& img) {
+  Fragment frag;
+  if (!make_fragment(view, tri, px, py, frag)) return;
+  const size_t i = img.index(px, py);
+  if (!(frag.t < img.depth[i])) return;
+  write_pixel(img, i, frag.t, shade_fragment(scene, object, material, view, tri, frag));
+}
+
+// Draws a triangle: clipped to the view volume, each piece snapped, culled if the object
+// asks, and every pixel it covers drawn (core/coverage.hpp).
+void draw_triangle(const core::Scene& scene, const core::Object& object, const core::Material& material,
+                   const View& view, const WorldTriangle& tri, Image& img) {
+  const auto poly = core::clip_triangle(view.view_projection * glm::dvec4(tri.P[0], 1),
+                                        view.view_projection * glm::dvec4(tri.P[1], 1),
+                                        view.view_projection * glm::dvec4(tri.P[2], 1));
+  for (size_t k = 1; k + 1 < poly.size(); ++k) {
+    core::SnappedTriangle st;
+    if (!core::snap_triangle(core::to_screen(poly[0].clip, img.width, img.height),
+                             core::to_screen(poly[k].clip, img.width, img.height),
+                             core::to_screen(poly[k + 1].clip, img.width, img.height),
+                             img.width, img.height, st))
+      continue;
+    if (object.cull_back && !st.front_facing) continue;
+    for (int py = st.y0; py <= st.y1; ++py) {
+      const auto [x_begin, x_end] = st.row_span(py);
+      for (int px = x_begin; px < x_end; ++px) draw_pixel(scene, object, material, view, tri, px, py, img);
     }
   }
+}
+
+// Draws every triangle of an object, in world space.
+void draw_object(const core::Scene& scene, const core::Object& object, const View& view, Image& img) {
+  const core::Mesh mesh = core::to_world(object);
+  const core::Material& material = scene.materials[object.material];
+  for (const auto& indices : mesh.triangles) {
+    WorldTriangle tri;
+    if (setup_triangle(mesh, indices, material, tri)) draw_triangle(scene, object, material, view, tri, img);
+  }
+}
+
+}  // namespace
+
+Image render(const core::Scene& scene) {
+  Image img = blank_image(scene);
+  const View view = make_view(scene.camera);
+  for (const core::Object& object : scene.objects) draw_object(scene, object, view, img);
   return img;
 }
 
