@@ -73,135 +73,189 @@ void finish_cells(const core::ParallaxSettings& s, const ParallaxMaps& m, T& x, 
   if (ops) *ops += kOpsCell * uint64_t(march.cells);
 }
 
-// The tracer in the number type T (pipeline.parallax.format): the ray, the layer
-// search, the skipping steps and the uv out.
+// The view ray in the tracer's space (core/parallax_map.hpp): x along u, y down the
+// rows, z in slices of the depth; (dx, dy, dz) unit there. In the number type T.
+template <class T>
+struct Ray {
+  T x0, y0, a, b, c;  // the entry (texels) and the tangent-space direction
+  T W, H, D;          // the map's size: texels across and down, slices deep
+  T dx, dy, dz;
+};
+
+// The ray of a pixel; false where there is none to trace (no depth, a ray leaving the
+// surface, no direction, or one so close to the surface it would run over 10⁶ texels):
+// the entry is the answer then.
+template <class T>
+bool make_ray(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0f, float y0f, float af, float bf,
+              float cf, Ops* ops, Ray<T>& ray) {
+  if (!(s.depth > 0) || !(cf < 0) || !std::isfinite(af) || !std::isfinite(bf)) return false;
+  const core::HeightField& f = m.field;
+  ray.W = T(float(f.width)), ray.H = T(float(f.height)), ray.D = T(float(m.slices));
+  ray.x0 = T(x0f), ray.y0 = T(y0f), ray.a = T(af), ray.b = T(bf), ray.c = T(cf);
+  const T one = T(1.0f), zero = T(0.0f);
+  if (ops) *ops += kOpsRay;
+  T dx = ray.a * ray.W, dy = -ray.b * ray.H, dz = ray.c * ray.D / T(float(s.depth));
+  const T length2 = dx * dx + dy * dy + dz * dz;
+  if (!(length2 > zero)) return false;  // no direction (before a reciprocal of 0)
+  const T scale = one / sqrt_op(length2);
+  if (!std::isfinite(float(scale)) || scale == zero) return false;
+  dx *= scale, dy *= scale, dz *= scale;  // unit in the tracer's space
+  // A ray this close to the surface would run over 10⁶ texels: treated as parallel.
+  if (-dz < T(1e-6f) || !(dz < zero)) return false;
+  ray.dx = dx, ray.dy = dy, ray.dz = dz;
+  return true;
+}
+
+// Offset limiting: T = T0 + depth·(1 − h(T0))·v̂xy with v̂ the unit physical direction:
+// no division by v̂z, so the shift stays within the depth at grazing views.
+template <class T>
+void trace_offset(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, ParallaxTrace& r,
+                  Ops* ops) {
+  const T one = T(1.0f), a = ray.a, b = ray.b, c = ray.c;
+  const T h = height_at(m.field, ray.x0, ray.y0);
+  const T inv = one / sqrt_op(a * a + b * b + c * c);
+  const T shift = T(float(s.depth)) * (one - h) * inv;
+  r.x = float(ray.x0 + shift * a * ray.W), r.y = float(ray.y0 - shift * b * ray.H);
+  r.iterations = 1, r.fetches = 4;
+  if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 6, 0, 0, /*rsqrt*/ 1} + kOpsOut;
+}
+
+// POM: where the line between the two layers' heights crosses the ray.
+template <class T>
+void pom_finish(const core::ParallaxSettings&, const ParallaxMaps& m, const Ray<T>& ray, T px, T py, T pz, T ph, T h,
+                T& x, T& y, T z, ParallaxTrace& r, Ops* ops) {
+  const T D = ray.D, one = T(1.0f), zero = T(0.0f);
+  if (pz == D) {
+    // Under the relief at the first layer: the entry's height, for the line below.
+    ph = D * height_at(m.field, ray.x0, ray.y0);
+    ++r.iterations, r.fetches += 4;
+    if (ops) *ops += kOpsHeightRead;
+  }
+  const T above = pz - ph, below = h - z;
+  const T w = above + below > zero ? above / (above + below) : one;
+  x = px + (x - px) * w, y = py + (y - py) * w;
+  if (ops) *ops += Ops{/*add*/ 6, /*mul*/ 2, /*div*/ 1};
+}
+
+// Relief: a binary search between the last layer above and the first one under.
+template <class T>
+void relief_finish(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T px, T py, T pz, T& x,
+                   T& y, T& z, ParallaxTrace& r, Ops* ops) {
+  const T half = T(0.5f);
+  for (int i = 0; i < s.binary_steps && r.iterations < s.max_iterations; ++i) {
+    const T mx = (px + x) * half, my = (py + y) * half, mz = (pz + z) * half;
+    const T mh = ray.D * height_at(m.field, mx, my);
+    ++r.iterations, r.fetches += 4;
+    if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 3};
+    if (mz <= mh) x = mx, y = my, z = mz;
+    else px = mx, py = my, pz = mz;
+  }
+}
+
+// Steep parallax, POM and relief: the layer search, then each one's finish. False if
+// the ray overflowed (float16: counted; the entry kept).
+template <class T>
+bool trace_layers(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& x, T& y, T& z,
+                  ParallaxTrace& r, Ops* ops) {
+  const core::HeightField& f = m.field;
+  const T D = ray.D, a = ray.a, b = ray.b, c = ray.c;
+  // More layers the flatter the view: n = max + (min − max)·|cos θ|, θ from the normal.
+  const float cos_view = float(-c / sqrt_op(a * a + b * b + c * c));
+  const int layers = std::max(1, int(std::lround(float(s.layers_max) + float(s.layers_min - s.layers_max) * cos_view)));
+  const T step = (D / T(float(layers))) / -ray.dz;  // ray length per layer
+  T px = x, py = y, pz = z, ph = D;                  // the last point above (the entry)
+  T h = ph;
+  for (int i = 1; i <= layers && r.iterations < s.max_iterations; ++i) {
+    const T along = T(float(i)) * step;
+    x = ray.x0 + along * ray.dx, y = ray.y0 + along * ray.dy, z = D + along * ray.dz;
+    if (!finite(x) || !finite(y)) return false;
+    h = D * height_at(f, x, y);
+    ++r.iterations, r.fetches += 4;
+    if (ops) *ops += kOpsLayer;
+    if (z <= h) break;
+    px = x, py = y, pz = z, ph = h;
+  }
+  if (!s.early_exit) {  // the loop runs every layer; the hit is the first one under
+    const int idle = layers - std::min(layers, r.iterations);
+    r.iterations += idle, r.fetches += 4 * idle;
+    if (ops) *ops += kOpsLayer * uint64_t(idle);
+  }
+  if (s.method == core::ParallaxMethod::Pom && z <= h) pom_finish(s, m, ray, px, py, pz, ph, h, x, y, z, r, ops);
+  else if (s.method == core::ParallaxMethod::Relief && z <= h) relief_finish(s, m, ray, px, py, pz, x, y, z, r, ops);
+  return true;
+}
+
+// Sphere tracing: p ← p + d(p)·v̂, the voxel holding p read as stored (its value is safe
+// for every point of the voxel); then the exact cells. False if the ray overflowed.
+template <class T>
+bool trace_spheres(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& x, T& y, T& z,
+                   ParallaxTrace& r, Ops* ops) {
+  const T near = T(kParallaxNear);
+  while (r.iterations < s.max_iterations) {
+    if (!finite(x) || !finite(y) || !finite(z)) return false;
+    const T d = T(m.volume.sample(float(x), float(y), float(z)));
+    ++r.iterations, ++r.fetches;
+    if (ops) *ops += kOpsSphere;
+    if (d < near) break;
+    x += d * ray.dx, y += d * ray.dy, z += d * ray.dz;
+    ++r.skips;
+  }
+  if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, ray.dx, ray.dy, ray.dz, r, ops);
+  return true;
+}
+
+// Cone stepping: from p over cell (i, j), the ray stays in the cone of the cell — free
+// of relief — until it has come down to apex + (distance from the footprint)/ratio; then
+// the exact cells. False if the ray overflowed.
+template <class T>
+bool trace_cones(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& x, T& y, T& z,
+                 ParallaxTrace& r, Ops* ops) {
+  const core::HeightField& f = m.field;
+  const T zero = T(0.0f), across = sqrt_op(ray.dx * ray.dx + ray.dy * ray.dy), down = -ray.dz;
+  const T near = T(kParallaxNear);
+  while (r.iterations < s.max_iterations) {
+    if (!finite(x) || !finite(y)) return false;
+    int i = int(float(floor_op(x))) % f.width, j = int(float(floor_op(y))) % f.height;
+    if (i < 0) i += f.width;
+    if (j < 0) j += f.height;
+    const size_t cell = size_t(j) * size_t(f.width) + size_t(i);
+    const T above = z - T(m.cone.apex[cell]), ratio = T(m.cone.ratio[cell]);
+    ++r.iterations, ++r.fetches;
+    if (ops) *ops += kOpsCone;
+    const T t = above > zero && ratio > zero ? above / (down + across / ratio) : zero;
+    if (t < near) break;
+    x += t * ray.dx, y += t * ray.dy, z += t * ray.dz;
+    ++r.skips;
+  }
+  if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, ray.dx, ray.dy, ray.dz, r, ops);
+  return true;
+}
+
+// The tracer in the number type T (pipeline.parallax.format): the ray, one of the
+// tracers, and the uv out.
 template <class T>
 ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0f, float y0f, float af,
                        float bf, float cf, Ops* ops) {
   ParallaxTrace r;
   r.x = x0f, r.y = y0f;
-  if (!(s.depth > 0) || !(cf < 0) || !std::isfinite(af) || !std::isfinite(bf)) return r;
-  const core::HeightField& f = m.field;
-  const T W = T(float(f.width)), H = T(float(f.height)), D = T(float(m.slices));
-  const T x0 = T(x0f), y0 = T(y0f), a = T(af), b = T(bf), c = T(cf), one = T(1.0f), zero = T(0.0f);
-  if (ops) *ops += kOpsRay;
-  // The ray in the tracer's space (core/parallax_map.hpp): x along u, y down the rows,
-  // z in slices of the depth.
-  T dx = a * W, dy = -b * H, dz = c * D / T(float(s.depth));
-  const T length2 = dx * dx + dy * dy + dz * dz;
-  if (!(length2 > zero)) return r;  // no direction (before a reciprocal of 0)
-  const T scale = one / sqrt_op(length2);
-  if (!std::isfinite(float(scale)) || scale == zero) return r;
-  dx *= scale, dy *= scale, dz *= scale;  // unit in the tracer's space
-  // A ray this close to the surface would run over 10⁶ texels: treated as parallel.
-  if (-dz < T(1e-6f) || !(dz < zero)) return r;
-  T x = x0, y = y0, z = D;
-
-  switch (s.method) {
-    case core::ParallaxMethod::Offset: {
-      // T = T0 + depth·(1 − h(T0))·v̂xy with v̂ the unit physical direction: no division
-      // by v̂z, so the shift stays within the depth at grazing views.
-      const T h = height_at(f, x0, y0);
-      const T inv = one / sqrt_op(a * a + b * b + c * c);
-      const T shift = T(float(s.depth)) * (one - h) * inv;
-      r.x = float(x0 + shift * a * W), r.y = float(y0 - shift * b * H);
-      r.iterations = 1, r.fetches = 4;
-      if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 6, 0, 0, /*rsqrt*/ 1} + kOpsOut;
-      return r;
-    }
-    case core::ParallaxMethod::Steep:
-    case core::ParallaxMethod::Pom:
-    case core::ParallaxMethod::Relief: {
-      // More layers the flatter the view: n = max + (min − max)·|cos θ|, θ from the normal.
-      const float cos_view = float(-c / sqrt_op(a * a + b * b + c * c));
-      const int layers = std::max(1, int(std::lround(float(s.layers_max) + float(s.layers_min - s.layers_max) * cos_view)));
-      const T step = (D / T(float(layers))) / -dz;  // ray length per layer
-      T px = x, py = y, pz = z, ph = D;              // the last point above (the entry)
-      T h = ph;
-      for (int i = 1; i <= layers && r.iterations < s.max_iterations; ++i) {
-        const T along = T(float(i)) * step;
-        x = x0 + along * dx, y = y0 + along * dy, z = D + along * dz;
-        if (!finite(x) || !finite(y)) return r;  // overflowed (float16): counted; the entry kept
-        h = D * height_at(f, x, y);
-        ++r.iterations, r.fetches += 4;
-        if (ops) *ops += kOpsLayer;
-        if (z <= h) break;
-        px = x, py = y, pz = z, ph = h;
-      }
-      if (!s.early_exit) {  // the loop runs every layer; the hit is the first one under
-        const int idle = layers - std::min(layers, r.iterations);
-        r.iterations += idle, r.fetches += 4 * idle;
-        if (ops) *ops += kOpsLayer * uint64_t(idle);
-      }
-      if (s.method == core::ParallaxMethod::Pom && z <= h && pz == D) {
-        // Under the relief at the first layer: the entry's height, for the line below.
-        ph = D * height_at(f, x0, y0);
-        ++r.iterations, r.fetches += 4;
-        if (ops) *ops += kOpsHeightRead;
-      }
-      if (s.method == core::ParallaxMethod::Pom && z <= h) {
-        // Where the line between the two layers' heights crosses the ray.
-        const T above = pz - ph, below = h - z;
-        const T w = above + below > zero ? above / (above + below) : one;
-        x = px + (x - px) * w, y = py + (y - py) * w;
-        if (ops) *ops += Ops{/*add*/ 6, /*mul*/ 2, /*div*/ 1};
-      } else if (s.method == core::ParallaxMethod::Relief && z <= h) {
-        const T half = T(0.5f);
-        for (int i = 0; i < s.binary_steps && r.iterations < s.max_iterations; ++i) {
-          const T mx = (px + x) * half, my = (py + y) * half, mz = (pz + z) * half;
-          const T mh = D * height_at(f, mx, my);
-          ++r.iterations, r.fetches += 4;
-          if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 3};
-          if (mz <= mh) x = mx, y = my, z = mz;
-          else px = mx, py = my, pz = mz;
-        }
-      }
-      break;
-    }
-    case core::ParallaxMethod::Distance: {
-      // Sphere tracing: p ← p + d(p)·v̂, the voxel holding p read as stored (its value is
-      // safe for every point of the voxel).
-      const T near = T(kParallaxNear);
-      while (r.iterations < s.max_iterations) {
-        if (!finite(x) || !finite(y) || !finite(z)) return r;  // overflowed (float16): counted; the entry kept
-        const T d = T(m.volume.sample(float(x), float(y), float(z)));
-        ++r.iterations, ++r.fetches;
-        if (ops) *ops += kOpsSphere;
-        if (d < near) break;
-        x += d * dx, y += d * dy, z += d * dz;
-        ++r.skips;
-      }
-      if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, dx, dy, dz, r, ops);
-      break;
-    }
-    case core::ParallaxMethod::Cone: {
-      // Cone stepping: from p over cell (i, j), the ray stays in the cone of the cell —
-      // free of relief — until it has come down to apex + (distance from the footprint)/ratio.
-      const T across = sqrt_op(dx * dx + dy * dy), down = -dz, near = T(kParallaxNear);
-      while (r.iterations < s.max_iterations) {
-        if (!finite(x) || !finite(y)) return r;  // overflowed (float16): counted; the entry kept
-        int i = int(float(floor_op(x))) % f.width, j = int(float(floor_op(y))) % f.height;
-        if (i < 0) i += f.width;
-        if (j < 0) j += f.height;
-        const size_t cell = size_t(j) * size_t(f.width) + size_t(i);
-        const T above = z - T(m.cone.apex[cell]), ratio = T(m.cone.ratio[cell]);
-        ++r.iterations, ++r.fetches;
-        if (ops) *ops += kOpsCone;
-        const T t = above > zero && ratio > zero ? above / (down + across / ratio) : zero;
-        if (t < near) break;
-        x += t * dx, y += t * dy, z += t * dz;
-        ++r.skips;
-      }
-      if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, dx, dy, dz, r, ops);
-      break;
-    }
+  Ray<T> ray;
+  if (!make_ray(s, m, x0f, y0f, af, bf, cf, ops, ray)) return r;
+  if (s.method == core::ParallaxMethod::Offset) {
+    trace_offset(s, m, ray, r, ops);
+    return r;
   }
-  if (!s.early_exit && (s.method == core::ParallaxMethod::Distance || s.method == core::ParallaxMethod::Cone)) {
+  T x = ray.x0, y = ray.y0, z = ray.D;
+  const bool distance = s.method == core::ParallaxMethod::Distance, cone = s.method == core::ParallaxMethod::Cone;
+  const bool traced = distance ? trace_spheres(s, m, ray, x, y, z, r, ops)
+                      : cone   ? trace_cones(s, m, ray, x, y, z, r, ops)
+                               : trace_layers(s, m, ray, x, y, z, r, ops);
+  if (!traced) return r;  // overflowed (float16): counted; the entry kept
+  if (!s.early_exit && (distance || cone)) {
     // A fixed-length loop: the iterations after the hit still read the map (and find
     // the point where it is).
     const int idle = s.max_iterations - std::min(s.max_iterations, r.iterations);
     r.iterations += idle, r.fetches += idle;
-    if (ops) *ops += (s.method == core::ParallaxMethod::Cone ? kOpsCone : kOpsSphere) * uint64_t(idle);
+    if (ops) *ops += (cone ? kOpsCone : kOpsSphere) * uint64_t(idle);
   }
   if (!finite(x) || !finite(y)) return r;  // overflowed (float16): counted; the entry kept
   r.x = float(x), r.y = float(y);

@@ -118,80 +118,102 @@ void SetupKernel::setup_parallax(const Vertex v[3], const float inv_w[3], const 
   ops += kOpsPerPlane * 3 + Ops{/*add*/ 25 + 27, /*mul*/ 40 + 27 + 9, /*div*/ 1, /*sqrt*/ 2};
 }
 
+namespace {
+// Values at the vertices, over w, as planes (as setup() does for the others).
+void solve_planes(const PlaneSolver<float>& ps, const float inv_w[3], Plane out[3], const glm::dvec3 value[3],
+                  Ops& ops) {
+  for (int c = 0; c < 3; ++c)
+    ps.solve(float(value[0][c]) * inv_w[0], float(value[1][c]) * inv_w[1], float(value[2][c]) * inv_w[2], out[c].a0,
+             out[c].ax, out[c].ay);
+  ops += kOpsPerPlane * 3;
+  ops.mul += 9;
+}
+}  // namespace
+
 void SetupKernel::setup_bump(const Vertex v[3], const float inv_w[3], const PlaneSolver<float>& ps,
                              glm::dvec3 pu, glm::dvec3 pv, TriangleSetup& t, Ops& ops) {
-  // Values at the vertices, over w, as planes (as setup() does for the others).
-  auto planes = [&](Plane out[3], const glm::dvec3 value[3]) {
-    for (int c = 0; c < 3; ++c)
-      ps.solve(float(value[0][c]) * inv_w[0], float(value[1][c]) * inv_w[1], float(value[2][c]) * inv_w[2],
-               out[c].a0, out[c].ax, out[c].ay);
-    ops += kOpsPerPlane * 3;
-    ops.mul += 9;
-  };
-  glm::dvec3 n[3];
-  for (int k = 0; k < 3; ++k) n[k] = glm::normalize(v[k].normal);
+  BumpFrame f;
+  for (int k = 0; k < 3; ++k) f.n[k] = glm::normalize(v[k].normal);
   ops += kOpsNormalize3 * 3;
-  const core::ShadingPath path = t.material->path;
-
+  f.pu = pu, f.pv = pv;
   // The triangle's tangent frame, from Pu and Pv (solved in run(): about 20 mul, 17 add,
   // 1 div), and its orientation: s = −1 where the parameterization is mirrored against
   // the shading normal, so that the relief stays a relief (N' = c·n + s·(…)). No frame
   // where the uv triangle has no area or the figures leave float's range.
   const glm::dvec3 pu_x_pv = glm::cross(pu, pv);
-  const double c = glm::length(pu_x_pv);
-  const bool frame = c > 0 && std::isfinite(float(c)) && std::isfinite(float(glm::length(pu))) &&
-                     std::isfinite(float(glm::length(pv)));
-  const double s = glm::dot(pu_x_pv, n[0] + n[1] + n[2]) < 0 ? -1.0 : 1.0;
-  t.bump_frame = frame;
+  f.c = glm::length(pu_x_pv);
+  f.exists = f.c > 0 && std::isfinite(float(f.c)) && std::isfinite(float(glm::length(pu))) &&
+             std::isfinite(float(glm::length(pv)));
+  f.s = glm::dot(pu_x_pv, f.n[0] + f.n[1] + f.n[2]) < 0 ? -1.0 : 1.0;
+  t.bump_frame = f.exists;
   ops += Ops{/*add*/ 17 + 5 + 8, /*mul*/ 20 + 9 + 3, /*div*/ 1, /*sqrt*/ 1};
-
-  if (path == core::ShadingPath::BumpClassic) {
-    glm::dvec3 x[3], y[3];
-    for (int k = 0; k < 3; ++k) {
-      x[k] = frame ? s * glm::cross(n[k], pv) : glm::dvec3(0);
-      y[k] = frame ? s * glm::cross(pu, n[k]) : glm::dvec3(0);
-    }
-    t.bump_c = frame ? float(c) : 1.0f;  // no tangent frame: N unperturbed
-    planes(t.n_x_pv, x);
-    planes(t.pu_x_n, y);
-    ops += Ops{/*add*/ 18, /*mul*/ 36 + 18};  // two cross products per vertex, the sign
-    return;
-  }
-  // Fetched-normal paths: L and H of every light at the vertices, in the texture's
-  // space — tangent (rows T, B, n) or object (to_object_) — as planes. The tangent T is
-  // the map's, Pu on the tangent plane (so the frames agree at the vertices); B = n × T,
-  // turned by s for the square patch, whose b runs along Pv. Without a frame, bump_fetch
-  // sends the unperturbed normal +z and the lighting is done in a tangent frame.
+  if (t.material->path == core::ShadingPath::BumpClassic) return setup_classic_bump(f, inv_w, ps, t, ops);
   glm::dmat3 to_space[3];
+  texture_space(v, f, t.material->path, to_space, ops);
+  if (affine_bump_vectors_) setup_affine_bump_vectors(v, to_space, inv_w, ps, t, ops);
+  else setup_unit_bump_vectors(v, f, to_space, inv_w, ps, t, ops);
+}
+
+// Classic bump mapping: the planes of n × Pv and Pu × n (signed by s), and c = |Pu × Pv|.
+void SetupKernel::setup_classic_bump(const BumpFrame& f, const float inv_w[3], const PlaneSolver<float>& ps,
+                                     TriangleSetup& t, Ops& ops) {
+  glm::dvec3 x[3], y[3];
   for (int k = 0; k < 3; ++k) {
-    if (path == core::ShadingPath::BumpObject && frame) {
+    x[k] = f.exists ? f.s * glm::cross(f.n[k], f.pv) : glm::dvec3(0);
+    y[k] = f.exists ? f.s * glm::cross(f.pu, f.n[k]) : glm::dvec3(0);
+  }
+  t.bump_c = f.exists ? float(f.c) : 1.0f;  // no tangent frame: N unperturbed
+  solve_planes(ps, inv_w, t.n_x_pv, x, ops);
+  solve_planes(ps, inv_w, t.pu_x_n, y, ops);
+  ops += Ops{/*add*/ 18, /*mul*/ 36 + 18};  // two cross products per vertex, the sign
+}
+
+// Fetched-normal paths: the texture's space at each vertex — tangent (rows T, B, n) or
+// object (to_object_). The tangent T is the map's, Pu on the tangent plane (so the
+// frames agree at the vertices); B = n × T, turned by s for the square patch, whose b
+// runs along Pv. Without a frame, bump_fetch sends the unperturbed normal +z and the
+// lighting is done in a tangent frame.
+void SetupKernel::texture_space(const Vertex v[3], const BumpFrame& f, core::ShadingPath path,
+                                glm::dmat3 to_space[3], Ops& ops) const {
+  for (int k = 0; k < 3; ++k) {
+    if (path == core::ShadingPath::BumpObject && f.exists) {
       to_space[k] = to_object_;
-    } else {
-      const glm::dvec3 along = frame ? pu : v[k].tangent;
-      glm::dvec3 T = along - glm::dot(along, n[k]) * n[k];
-      T = glm::dot(T, T) > 1e-24 ? glm::normalize(T) : core::any_tangent(n[k]);
-      const glm::dvec3 B = (path == core::ShadingPath::BumpSquare ? s : 1.0) * glm::cross(n[k], T);
-      to_space[k] = glm::transpose(glm::dmat3(T, B, n[k]));  // rows T, B, n
-      ops += Ops{/*add*/ 2 + 3 + 3, /*mul*/ 3 + 3 + 6} + kOpsNormalize3;
+      continue;
     }
+    const glm::dvec3 along = f.exists ? f.pu : v[k].tangent;
+    glm::dvec3 T = along - glm::dot(along, f.n[k]) * f.n[k];
+    T = glm::dot(T, T) > 1e-24 ? glm::normalize(T) : core::any_tangent(f.n[k]);
+    const glm::dvec3 B = (path == core::ShadingPath::BumpSquare ? f.s : 1.0) * glm::cross(f.n[k], T);
+    to_space[k] = glm::transpose(glm::dmat3(T, B, f.n[k]));  // rows T, B, n
+    ops += Ops{/*add*/ 2 + 3 + 3, /*mul*/ 3 + 3 + 6} + kOpsNormalize3;
   }
+}
+
+// vector_interp.bump_vectors = affine: L = light − P and V = eye − P, affine over the
+// triangle, in the space of each vertex, as planes.
+void SetupKernel::setup_affine_bump_vectors(const Vertex v[3], const glm::dmat3 to_space[3], const float inv_w[3],
+                                            const PlaneSolver<float>& ps, TriangleSetup& t, Ops& ops) const {
   const core::Camera& cam = scene_.camera;
-  if (affine_bump_vectors_) {
-    // L = light − P and V = eye − P, affine over the triangle, in the space of each vertex.
-    glm::dvec3 vv[3];
-    for (int k = 0; k < 3; ++k) vv[k] = to_space[k] * (cam.local_viewer ? cam.position - v[k].position : -cam.forward());
-    planes(t.vt, vv);
+  glm::dvec3 vv[3];
+  for (int k = 0; k < 3; ++k) vv[k] = to_space[k] * (cam.local_viewer ? cam.position - v[k].position : -cam.forward());
+  solve_planes(ps, inv_w, t.vt, vv, ops);
+  ops += Ops{/*add*/ 6 + 3, /*mul*/ 9} * 3;
+  for (size_t light = 0; light < scene_.lights.size() && light < size_t(kMaxLights); ++light) {
+    const core::Light& l = scene_.lights[light];
+    glm::dvec3 lv[3];
+    for (int k = 0; k < 3; ++k)
+      lv[k] = to_space[k] * (l.type == core::Light::Type::Point ? l.position - v[k].position : -l.direction);
+    solve_planes(ps, inv_w, t.lt[light], lv, ops);
     ops += Ops{/*add*/ 6 + 3, /*mul*/ 9} * 3;
-    for (size_t light = 0; light < scene_.lights.size() && light < size_t(kMaxLights); ++light) {
-      const core::Light& l = scene_.lights[light];
-      glm::dvec3 lv[3];
-      for (int k = 0; k < 3; ++k)
-        lv[k] = to_space[k] * (l.type == core::Light::Type::Point ? l.position - v[k].position : -l.direction);
-      planes(t.lt[light], lv);
-      ops += Ops{/*add*/ 6 + 3, /*mul*/ 9} * 3;
-    }
-    return;
   }
+}
+
+// The paper's unit L and H of every light at the vertices, in the texture's space, as
+// planes.
+void SetupKernel::setup_unit_bump_vectors(const Vertex v[3], const BumpFrame& f, const glm::dmat3 to_space[3],
+                                          const float inv_w[3], const PlaneSolver<float>& ps, TriangleSetup& t,
+                                          Ops& ops) const {
+  const core::Camera& cam = scene_.camera;
   for (size_t light = 0; light < scene_.lights.size() && light < size_t(kMaxLights); ++light) {
     const core::Light& l = scene_.lights[light];
     glm::dvec3 lv[3], hv[3];
@@ -199,23 +221,23 @@ void SetupKernel::setup_bump(const Vertex v[3], const float inv_w[3], const Plan
       glm::dvec3 L = -l.direction;
       if (l.type == core::Light::Type::Point) {
         const glm::dvec3 d = l.position - v[k].position;
-        L = glm::dot(d, d) > 0 ? glm::normalize(d) : n[k];
+        L = glm::dot(d, d) > 0 ? glm::normalize(d) : f.n[k];
         ops += Ops{/*add*/ 3} + kOpsNormalize3;
       }
       glm::dvec3 V = -cam.forward();
       if (cam.local_viewer) {
         const glm::dvec3 d = cam.position - v[k].position;
-        V = glm::dot(d, d) > 0 ? glm::normalize(d) : n[k];
+        V = glm::dot(d, d) > 0 ? glm::normalize(d) : f.n[k];
         ops += Ops{/*add*/ 3} + kOpsNormalize3;
       }
       const glm::dvec3 h = L + V;
-      const glm::dvec3 H = glm::dot(h, h) > 0 ? glm::normalize(h) : n[k];
+      const glm::dvec3 H = glm::dot(h, h) > 0 ? glm::normalize(h) : f.n[k];
       lv[k] = to_space[k] * L;
       hv[k] = to_space[k] * H;
       ops += Ops{/*add*/ 3 + 12, /*mul*/ 18} + kOpsNormalize3;  // H, two 3×3 products
     }
-    planes(t.lt[light], lv);
-    planes(t.ht[light], hv);
+    solve_planes(ps, inv_w, t.lt[light], lv, ops);
+    solve_planes(ps, inv_w, t.ht[light], hv, ops);
   }
 }
 

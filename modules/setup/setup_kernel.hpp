@@ -67,6 +67,21 @@ class SetupKernel {
   // Bump-mapping planes (docs/bump-mapping.md); Pu, Pv of the whole triangle.
   void setup_bump(const Vertex v[3], const float inv_w[3], const PlaneSolver<float>& ps, glm::dvec3 pu,
                   glm::dvec3 pv, TriangleSetup& t, Ops& ops);
+  // Its steps: the triangle's tangent frame, then the path's planes.
+  struct BumpFrame {
+    glm::dvec3 n[3];      // unit normals at the vertices
+    glm::dvec3 pu, pv;    // ∂P/∂u, ∂P/∂v of the whole triangle
+    double c = 0, s = 1;  // |Pu × Pv|, and −1 where the parameterization is mirrored
+    bool exists = false;  // a frame: the uv triangle has area, the figures are in range
+  };
+  void setup_classic_bump(const BumpFrame& f, const float inv_w[3], const PlaneSolver<float>& ps, TriangleSetup& t,
+                          Ops& ops);
+  void texture_space(const Vertex v[3], const BumpFrame& f, core::ShadingPath path, glm::dmat3 to_space[3],
+                     Ops& ops) const;
+  void setup_affine_bump_vectors(const Vertex v[3], const glm::dmat3 to_space[3], const float inv_w[3],
+                                 const PlaneSolver<float>& ps, TriangleSetup& t, Ops& ops) const;
+  void setup_unit_bump_vectors(const Vertex v[3], const BumpFrame& f, const glm::dmat3 to_space[3],
+                               const float inv_w[3], const PlaneSolver<float>& ps, TriangleSetup& t, Ops& ops) const;
 
   const core::Scene& scene_;
   bool perspective_;

@@ -89,10 +89,35 @@ void TexelProjectKernel::run(FramebufferKernel& fb) {
   cycles_ = busiest + (covered_ + uint64_t(units_) - 1) / uint64_t(units_);
 }
 
+// One triangle's splatting once it is set up: the level sampled and the sampling rate
+// (the LOD), the samples' bounds (the traversal), the mapping from the rotated plane
+// back to clip space (M*), and the texture tiles its texels are read from.
+struct TexelProjectKernel::Splat {
+  const glm::dvec2* uv = nullptr;   // the triangle's uvs
+  glm::dvec2 t1, t2;                // uv edges from vertex A
+  double det = 0;                   // their determinant
+  uint32_t source = 0;              // the scene triangle (the visibility buffer holds source + 1)
+  const std::vector<uint32_t>* visible = nullptr;
+  const core::Texture* texture = nullptr;  // level 0
+  const core::Texture* tex = nullptr;      // the level sampled
+  long mi = 1;                      // samples per texel and axis (magnified), else 1
+  double GW = 0, GH = 0;            // samples per unit of u and of v
+  long i0 = 0, i1 = 0, j0 = 0, j1 = 0;  // the samples' box
+  double margin = 0, altitude[3] = {}, slope[3] = {};
+  glm::dvec2 along_u, along_v;      // uv → (x', y') − A
+  glm::dvec4 A_x, A_y, a0;          // M*: clip = A_x·(x' − x'_A) + A_y·(y' − y'_A) + clip(A)
+  long tile_row0 = 0;
+  std::vector<std::pair<long, long>> tile_span;  // per row of tiles: the tiles read
+};
+
+namespace {
+long floor_div(long a, long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+long bound(double x) { return long(std::clamp(x, -4e9, 4e9)); }
+}  // namespace
+
 void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 uv[3], const core::Texture& texture,
                                         const std::vector<const core::Texture*>& levels, uint32_t source,
                                         const FramebufferKernel& fb) {
-  const int width = scene_.camera.width, height = scene_.camera.height;
   const glm::dvec3 N = glm::cross(P[1] - P[0], P[2] - P[0]);
   const double length = glm::length(N);
   if (!(length > 0) || !std::isfinite(length)) return;  // no plane to rotate (setup skips it too)
@@ -102,58 +127,79 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
   const auto visible_part = core::clip_triangle(clip[0], clip[1], clip[2]);
   if (visible_part.size() < 3) return;
   ++polygons_;
-  const auto& visible = fb.visible_source();
-  const glm::dvec2 t1 = uv[1] - uv[0], t2 = uv[2] - uv[0];
-  const double det = t1.x * t2.y - t2.x * t1.y;
-  if (!(std::abs(det) * texture.width * texture.height > 1e-6) || !std::isfinite(det)) {
-    // No texture mapping (the uv triangle covers less than a millionth of a texel): the
-    // texture is constant over the triangle, its value at the uv. One sample, weight 1,
-    // on every pixel it is seen at.
-    const glm::vec4 c = texture.bilinear((uv[0] + uv[1] + uv[2]) / 3.0);
-    glm::dvec2 lo(width, height), hi(0, 0);
-    for (const auto& vertex : visible_part) {
-      const glm::dvec3 sp = core::to_screen(vertex.clip, width, height);
-      lo = glm::min(lo, glm::dvec2(sp)), hi = glm::max(hi, glm::dvec2(sp));
-    }
-    ops_.fetch += 4;
-    for (int y = std::max(0, int(lo.y) - 1); y <= std::min(height - 1, int(hi.y) + 1); ++y)
-      for (int x = std::max(0, int(lo.x) - 1); x <= std::min(width - 1, int(hi.x) + 1); ++x) {
-        const size_t at = size_t(y) * size_t(width) + size_t(x);
-        if (visible[at] != source + 1) continue;
-        for (int k = 0; k < 3; ++k) accumulated_[at * 4 + size_t(k)] += c[k];
-        accumulated_[at * 4 + 3] += 1;
-        ++splats_;
-      }
-    return;
-  }
+  Splat s;
+  s.uv = uv, s.source = source, s.visible = &fb.visible_source(), s.texture = &texture;
+  s.t1 = uv[1] - uv[0], s.t2 = uv[2] - uv[0];
+  s.det = s.t1.x * s.t2.y - s.t2.x * s.t1.y;
+  if (!(std::abs(s.det) * texture.width * texture.height > 1e-6) || !std::isfinite(s.det))
+    return splat_constant(s, visible_part);
+  glm::dvec4 c_u, c_v;
+  rotate_into_plane(P, N / length, clip[0], s, c_u, c_v);
+  glm::dvec2 uv_lo, uv_hi;
+  choose_level(visible_part, levels, c_u, c_v, s, uv_lo, uv_hi);
+  bound_samples(uv_lo, uv_hi, s);
+  // The projection and the splat weights run in pipeline.texel_project.format (T); the
+  // traversal's set-up above stays in double, the accumulation in the frame's buffer.
+  with_number_type(numbers_, [&](auto zero) { splat_samples<decltype(zero)>(s); });
+  for (const auto& span : s.tile_span)
+    if (span.first <= span.second) ops_.line += uint64_t(span.second - span.first + 1);
+}
 
-  // (1)–(2), (6), (7): the triangle laid parallel to XY; z' once. Positions in the
-  // rotated plane are taken relative to vertex A, (x' − x'_A, y' − y'_A), so that float
-  // keeps their precision far from the origin; M* then adds A's clip position.
-  const glm::dvec3 n = N / length;
+// No texture mapping (the uv triangle covers less than a millionth of a texel): the
+// texture is constant over the triangle, its value at the uv. One sample, weight 1, on
+// every pixel it is seen at.
+void TexelProjectKernel::splat_constant(const Splat& s, const core::ClipPolygon& visible_part) {
+  const int width = scene_.camera.width, height = scene_.camera.height;
+  const glm::vec4 c = s.texture->bilinear((s.uv[0] + s.uv[1] + s.uv[2]) / 3.0);
+  glm::dvec2 lo(width, height), hi(0, 0);
+  for (const auto& vertex : visible_part) {
+    const glm::dvec3 sp = core::to_screen(vertex.clip, width, height);
+    lo = glm::min(lo, glm::dvec2(sp)), hi = glm::max(hi, glm::dvec2(sp));
+  }
+  ops_.fetch += 4;
+  for (int y = std::max(0, int(lo.y) - 1); y <= std::min(height - 1, int(hi.y) + 1); ++y)
+    for (int x = std::max(0, int(lo.x) - 1); x <= std::min(width - 1, int(hi.x) + 1); ++x) {
+      const size_t at = size_t(y) * size_t(width) + size_t(x);
+      if ((*s.visible)[at] != s.source + 1) continue;
+      for (int k = 0; k < 3; ++k) accumulated_[at * 4 + size_t(k)] += c[k];
+      accumulated_[at * 4 + 3] += 1;
+      ++splats_;
+    }
+}
+
+// (1)–(2), (6), (7): the triangle laid parallel to XY; z' once. Positions in the rotated
+// plane are taken relative to vertex A, (x' − x'_A, y' − y'_A), so that float keeps
+// their precision far from the origin; M* then adds A's clip position. Also the clip
+// coordinates as an affine function of uv, c_u·du + c_v·dv + clip(A), for the LOD.
+void TexelProjectKernel::rotate_into_plane(const glm::dvec3 P[3], const glm::dvec3& n, const glm::dvec4& clip_a,
+                                           Splat& s, glm::dvec4& c_u, glm::dvec4& c_v) {
   const PolygonRotation R(n);
   glm::dvec3 q[3];
   for (int k = 0; k < 3; ++k) q[k] = R.apply(P[k], n);
   ops_ += Ops{/*add*/ 2 + 9 + 2, /*mul*/ 6 + 2 + 3 * 6 + 2, /*div*/ 3, /*sqrt*/ 2};
   // uv → (x', y') − A: affine over the rotated triangle.
   const glm::dvec2 e1(q[1] - q[0]), e2(q[2] - q[0]);
-  const glm::dvec2 along_u = (e1 * t2.y - e2 * t1.y) / det, along_v = (e2 * t1.x - e1 * t2.x) / det;
+  s.along_u = (e1 * s.t2.y - e2 * s.t1.y) / s.det, s.along_v = (e2 * s.t1.x - e1 * s.t2.x) / s.det;
   // M* = view-projection · [R]⁻¹: clip = A·(x' − x'_A, y' − y'_A) + clip(A) (z' − z'_A = 0).
-  const glm::dvec4 A_x = view_projection_ * glm::dvec4(R.inverse({1, 0, 0}, n), 0.0);
-  const glm::dvec4 A_y = view_projection_ * glm::dvec4(R.inverse({0, 1, 0}, n), 0.0);
-  const glm::dvec4 a0 = clip[0];
+  s.A_x = view_projection_ * glm::dvec4(R.inverse({1, 0, 0}, n), 0.0);
+  s.A_y = view_projection_ * glm::dvec4(R.inverse({0, 1, 0}, n), 0.0);
+  s.a0 = clip_a;
   ops_ += Ops{/*add*/ 6 + 8 + 16, /*mul*/ 12 + 8 + 24, /*div*/ 1};
-  // Clip coordinates as an affine function of uv (for the LOD): c_u·du + c_v·dv + clip(A).
-  const glm::dvec4 c_u = A_x * along_u.x + A_y * along_u.y, c_v = A_x * along_v.x + A_y * along_v.y;
+  c_u = s.A_x * s.along_u.x + s.A_y * s.along_u.y, c_v = s.A_x * s.along_v.x + s.A_y * s.along_v.y;
+}
 
-  // The LOD, once: pixels per texel step of level 0 at the most magnified point of the
-  // visible triangle (taken at the vertices of its clipped polygon, where 1/w is
-  // largest); the level that makes the spacing at most one pixel. Magnified beyond
-  // level 0: m samples per texel and axis, read bilinearly.
+// The LOD, once: pixels per texel step of level 0 at the most magnified point of the
+// visible triangle (taken at the vertices of its clipped polygon, where 1/w is largest);
+// the level that makes the spacing at most one pixel. Magnified beyond level 0: m
+// samples per texel and axis, read bilinearly. Also the visible part's uv box.
+void TexelProjectKernel::choose_level(const core::ClipPolygon& visible_part,
+                                      const std::vector<const core::Texture*>& levels, const glm::dvec4& c_u,
+                                      const glm::dvec4& c_v, Splat& s, glm::dvec2& uv_lo, glm::dvec2& uv_hi) {
+  const int width = scene_.camera.width, height = scene_.camera.height;
   ++lod_computations_;
-  const double W0 = texture.width, H0 = texture.height;
+  const double W0 = s.texture->width, H0 = s.texture->height;
   double pixels_per_texel = 0;
-  glm::dvec2 uv_lo(1e300), uv_hi(-1e300);  // the uv box of the visible part
+  uv_lo = glm::dvec2(1e300), uv_hi = glm::dvec2(-1e300);
   for (const auto& vertex : visible_part) {
     const glm::dvec4 c = vertex.clip;
     auto step = [&](const glm::dvec4& d, double texels) {
@@ -162,7 +208,7 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
       return std::sqrt(sx * sx + sy * sy) / texels;
     };
     pixels_per_texel = std::max({pixels_per_texel, step(c_u, W0), step(c_v, H0)});
-    const glm::dvec2 at = vertex.bary.x * uv[0] + vertex.bary.y * uv[1] + vertex.bary.z * uv[2];
+    const glm::dvec2 at = vertex.bary.x * s.uv[0] + vertex.bary.y * s.uv[1] + vertex.bary.z * s.uv[2];
     uv_lo = glm::min(uv_lo, at), uv_hi = glm::max(uv_hi, at);
   }
   ops_ += Ops{/*add*/ 12, /*mul*/ 24, /*div*/ 4, /*sqrt*/ 2, 0, /*lut*/ 1} * uint64_t(visible_part.size());
@@ -183,63 +229,79 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
     if (m > 1) m = std::max(1.0, std::floor(std::sqrt(budget / box)));
     while (samples() > budget && level < last) ++level;
   }
-  const core::Texture& tex = *levels[size_t(level)];
-  const double GW = tex.width * m, GH = tex.height * m;  // samples per unit of u and of v
+  s.tex = levels[size_t(level)];
+  s.mi = long(m);
+  s.GW = s.tex->width * m, s.GH = s.tex->height * m;
+}
 
-  // The samples covering the uv triangle, conservatively: within 1.5 sample spacings of
-  // it (the visibility test drops what lands on other triangles), so that no pixel near
-  // an edge is left without a sample; only over the visible part's uv box.
-  auto bound = [](double x) { return long(std::clamp(x, -4e9, 4e9)); };
-  const long i0 = bound(std::floor(uv_lo.x * GW - 0.5)) - 1, i1 = bound(std::ceil(uv_hi.x * GW - 0.5)) + 1;
-  const long j0 = bound(std::floor((1 - uv_hi.y) * GH - 0.5)) - 1, j1 = bound(std::ceil((1 - uv_lo.y) * GH - 0.5)) + 1;
-  const double margin = 1.5 * std::max(1.0 / GW, 1.0 / GH);
-  const double area2 = std::abs(det);
-  const double altitude[3] = {area2 / glm::length(uv[2] - uv[1]), area2 / glm::length(uv[0] - uv[2]),
-                              area2 / glm::length(uv[1] - uv[0])};
-  Sampler bilinear(Filter::Bilinear, 1);
-  MipMap finest;
-  finest.levels.push_back(&texture);
-  const long mi = long(m);
+// The samples covering the uv triangle, conservatively: within 1.5 sample spacings of it
+// (the visibility test drops what lands on other triangles), so that no pixel near an
+// edge is left without a sample; only over the visible part's uv box. The traversal
+// walks rows of samples; on each row the three edges (moved out by the margin) bound
+// the run of samples inside, b_k(u) · altitude_k ≥ −margin with b_k affine in u, like a
+// scanline rasterizer's spans.
+void TexelProjectKernel::bound_samples(const glm::dvec2& uv_lo, const glm::dvec2& uv_hi, Splat& s) {
+  const glm::dvec2* uv = s.uv;
+  s.i0 = bound(std::floor(uv_lo.x * s.GW - 0.5)) - 1, s.i1 = bound(std::ceil(uv_hi.x * s.GW - 0.5)) + 1;
+  s.j0 = bound(std::floor((1 - uv_hi.y) * s.GH - 0.5)) - 1, s.j1 = bound(std::ceil((1 - uv_lo.y) * s.GH - 0.5)) + 1;
+  s.margin = 1.5 * std::max(1.0 / s.GW, 1.0 / s.GH);
+  const double area2 = std::abs(s.det);
+  s.altitude[0] = area2 / glm::length(uv[2] - uv[1]);
+  s.altitude[1] = area2 / glm::length(uv[0] - uv[2]);
+  s.altitude[2] = area2 / glm::length(uv[1] - uv[0]);
+  s.slope[0] = -(s.t2.y - s.t1.y) / s.det, s.slope[1] = s.t2.y / s.det, s.slope[2] = -s.t1.y / s.det;  // ∂b_k/∂u
   // Memory: the texture is read in 4×4-texel tiles, one line each; a unit streams a
   // triangle's texels row by row with a buffer of one row of tiles, so each tile row
   // costs its span of tiles.
-  auto floor_div = [](long a, long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
-  const long tile_row0 = floor_div(floor_div(j0, mi), 4);
-  std::vector<std::pair<long, long>> tile_span(size_t(floor_div(floor_div(j1, mi), 4) - tile_row0 + 1), {1, 0});
-  const float ax[3] = {float(A_x.x), float(A_x.y), float(A_x.w)}, ay[3] = {float(A_y.x), float(A_y.y), float(A_y.w)};
-  const float origin[3] = {float(a0.x), float(a0.y), float(a0.w)};
-  // The traversal walks rows of samples; on each row the three edges (moved out by the
-  // margin) bound the run of samples inside, b_k(u) · altitude_k ≥ −margin with b_k
-  // affine in u, like a scanline rasterizer's spans.
-  const double slope[3] = {-(t2.y - t1.y) / det, t2.y / det, -t1.y / det};  // ∂b_k/∂u
-  // The projection and the splat weights run in pipeline.texel_project.format (T); the
-  // traversal's set-up above stays in double, the accumulation in the frame's buffer.
-  with_number_type(numbers_, [&](auto zero) {
-  using T = decltype(zero);
+  s.tile_row0 = floor_div(floor_div(s.j0, s.mi), 4);
+  s.tile_span.assign(size_t(floor_div(floor_div(s.j1, s.mi), 4) - s.tile_row0 + 1), {1, 0});
+}
+
+// The run of samples [first, end] of row j inside the (widened) uv triangle; false if
+// the row has none. v and dv: the row's v, and v − v_A.
+bool TexelProjectKernel::row_run(const Splat& s, long j, long& first, long& end, double& v, double& dv) {
+  const glm::dvec2* uv = s.uv;
+  v = 1 - (double(j) + 0.5) / s.GH, dv = v - uv[0].y;
+  const double at_u0[3] = {1 - (-dv * s.t2.x + dv * s.t1.x) / s.det, -dv * s.t2.x / s.det,
+                           dv * s.t1.x / s.det};  // b_k at u = u0
+  double u_min = -1e300, u_max = 1e300;
+  for (int k = 0; k < 3; ++k) {
+    const double lowest = -s.margin / s.altitude[k];
+    if (s.slope[k] > 0) u_min = std::max(u_min, uv[0].x + (lowest - at_u0[k]) / s.slope[k]);
+    else if (s.slope[k] < 0) u_max = std::min(u_max, uv[0].x + (lowest - at_u0[k]) / s.slope[k]);
+    else if (at_u0[k] < lowest) u_max = -1e300;
+  }
+  ops_ += kOpsPerRow;
+  if (!(u_min <= u_max)) return false;
+  first = std::max(s.i0, bound(std::ceil(u_min * s.GW - 0.5))), end = std::min(s.i1, bound(std::floor(u_max * s.GW - 0.5)));
+  return true;
+}
+
+// Every sample of the triangle: back to the screen through M*, then splatted.
+template <class T>
+void TexelProjectKernel::splat_samples(Splat& s) {
+  const int width = scene_.camera.width, height = scene_.camera.height;
+  const float ax[3] = {float(s.A_x.x), float(s.A_x.y), float(s.A_x.w)};
+  const float ay[3] = {float(s.A_y.x), float(s.A_y.y), float(s.A_y.w)};
+  const float origin[3] = {float(s.a0.x), float(s.a0.y), float(s.a0.w)};
   const T ax_t[3] = {T(ax[0]), T(ax[1]), T(ax[2])}, ay_t[3] = {T(ay[0]), T(ay[1]), T(ay[2])};
   const T origin_t[3] = {T(origin[0]), T(origin[1]), T(origin[2])};
   const T one = T(1.0f), half = T(0.5f), w_min = T(1e-6f), width_t = T(float(width)), height_t = T(float(height));
+  Sampler bilinear(Filter::Bilinear, 1);
+  MipMap finest;
+  finest.levels.push_back(s.texture);
   uint64_t nonfinite_positions = 0;
-  for (long j = j0; j <= j1; ++j) {
-    const double v = 1 - (double(j) + 0.5) / GH, dv = v - uv[0].y;
-    const double at_u0[3] = {1 - (-dv * t2.x + dv * t1.x) / det, -dv * t2.x / det, dv * t1.x / det};  // b_k at u = u0
-    double u_min = -1e300, u_max = 1e300;
-    for (int k = 0; k < 3; ++k) {
-      const double lowest = -margin / altitude[k];
-      if (slope[k] > 0) u_min = std::max(u_min, uv[0].x + (lowest - at_u0[k]) / slope[k]);
-      else if (slope[k] < 0) u_max = std::min(u_max, uv[0].x + (lowest - at_u0[k]) / slope[k]);
-      else if (at_u0[k] < lowest) u_max = -1e300;
-    }
-    ops_ += kOpsPerRow;
-    if (!(u_min <= u_max)) continue;
-    const long first = std::max(i0, bound(std::ceil(u_min * GW - 0.5))), end = std::min(i1, bound(std::floor(u_max * GW - 0.5)));
+  for (long j = s.j0; j <= s.j1; ++j) {
+    long first, end;
+    double v, dv;
+    if (!row_run(s, j, first, end, v, dv)) continue;
     // (x', y') − A at the run's first sample, then a constant step per sample.
-    const double du_first = (double(first) + 0.5) / GW - uv[0].x;
-    T xr = T(float(along_u.x * du_first + along_v.x * dv)), yr = T(float(along_u.y * du_first + along_v.y * dv));
-    const T step_x = T(float(along_u.x / GW)), step_y = T(float(along_u.y / GW));
+    const double du_first = (double(first) + 0.5) / s.GW - s.uv[0].x;
+    T xr = T(float(s.along_u.x * du_first + s.along_v.x * dv)), yr = T(float(s.along_u.y * du_first + s.along_v.y * dv));
+    const T step_x = T(float(s.along_u.x / s.GW)), step_y = T(float(s.along_u.y / s.GW));
     ops_ += Ops{/*add*/ 3, /*mul*/ 6, /*div*/ 2};
     for (long i = first; i <= end; ++i, xr += step_x, yr += step_y) {
-      const double u = (double(i) + 0.5) / GW;
+      const double u = (double(i) + 0.5) / s.GW;
       // Back to the screen: (x', y') − A (stepped along the row: 2 add), then M*; behind
       // the eye: nothing to splat.
       ops_ += kOpsProjection;
@@ -260,60 +322,75 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
           nonfinite_positions += !std::isfinite(float(x)) + !std::isfinite(float(y));
         continue;
       }
-      ++texels_;
-      ops_ += kOpsPerTexel;
-      auto& span = tile_span[size_t(floor_div(floor_div(j, mi), 4) - tile_row0)];
-      const long tile = floor_div(floor_div(i, mi), 4);
-      if (span.first > span.second) span = {tile, tile};
-      else span.first = std::min(span.first, tile), span.second = std::max(span.second, tile);
-      // The sample's colour: the texel of the level (or, magnified, bilinear on level 0).
+      count_texel(s, i, j);
       float colour[3];
-      if (mi == 1) {
-        int tx = int(((i % tex.width) + tex.width) % tex.width), ty = int(((j % tex.height) + tex.height) % tex.height);
-        if (tex.wrap == core::Wrap::Clamp)
-          tx = int(std::clamp<long>(i, 0, tex.width - 1)), ty = int(std::clamp<long>(j, 0, tex.height - 1));
-        const glm::vec4& c = tex.texels[size_t(ty) * size_t(tex.width) + size_t(tx)];
-        colour[0] = c.r, colour[1] = c.g, colour[2] = c.b;
-      } else {
-        Ops sampler_ops;
-        const bool repeat = texture.wrap == core::Wrap::Repeat;  // whole periods off in double
-        bilinear.sample(finest, float(repeat ? u - std::floor(u) : u), float(repeat ? v - std::floor(v) : v), 0, 0, 0, 0,
-                        colour, sampler_ops);
-        sampler_ops.line = 0;  // lines: counted by tile rows
-        ops_ += sampler_ops;
-        ops_.fetch -= 1;       // counted in kOpsPerTexel
-      }
-      // The area weights of the four pixels around the sample.
-      const T fx0 = floor_op(x), fy0 = floor_op(y);
-      const T fx = x - fx0, fy = y - fy0;
-      const T weight_t[4] = {(one - fx) * (one - fy), fx * fy, fx * (one - fy), (one - fx) * fy};  // S1 … S4
-      const float weight[4] = {float(weight_t[0]), float(weight_t[1]), float(weight_t[2]), float(weight_t[3])};
-      const int px0 = int(float(fx0)), py0 = int(float(fy0));
-      const int px[4] = {px0, px0 + 1, px0 + 1, px0};
-      const int py[4] = {py0, py0 + 1, py0, py0 + 1};
-      weight_sum_error_ =
-          std::max(weight_sum_error_, std::abs(double(weight[0] + weight[1] + weight[2] + weight[3]) - 1.0));
-      // Splat units own interleaved 4×4 pixel tiles; a texel goes to the unit of its first
-      // pixel, and a splat into another unit's tile is a write across units (counted).
-      const int owner = (((px[0] + 4) >> 2) + ((py[0] + 4) >> 2)) % units_;
-      ++unit_texels_[size_t(owner)];
-      ++unit_round_robin_[size_t(texels_ % uint64_t(units_))];
-      for (int k = 0; k < 4; ++k) {
-        if (px[k] < 0 || py[k] < 0 || px[k] >= width || py[k] >= height || weight[k] <= 0) continue;
-        const size_t at = size_t(py[k]) * size_t(width) + size_t(px[k]);
-        if (visible[at] != source + 1) continue;  // the depth test: another surface is seen here
-        for (int c = 0; c < 3; ++c) accumulated_[at * 4 + size_t(c)] += double(weight[k] * colour[c]);
-        accumulated_[at * 4 + 3] += double(weight[k]);
-        ++splats_;
-        ops_ += kOpsPerAccumulation;
-        if ((((px[k] + 4) >> 2) + ((py[k] + 4) >> 2)) % units_ != owner) ++cross_unit_splats_;
-      }
+      sample_colour(s, i, j, u, v, bilinear, finest, colour);
+      splat(s, x, y, colour);
     }
   }
   nonfinite_ += nonfinite_positions;
-  });
-  for (const auto& span : tile_span)
-    if (span.first <= span.second) ops_.line += uint64_t(span.second - span.first + 1);
+}
+
+// A texel on the frame: its operations, and the tile it is read from.
+void TexelProjectKernel::count_texel(Splat& s, long i, long j) {
+  ++texels_;
+  ops_ += kOpsPerTexel;
+  auto& span = s.tile_span[size_t(floor_div(floor_div(j, s.mi), 4) - s.tile_row0)];
+  const long tile = floor_div(floor_div(i, s.mi), 4);
+  if (span.first > span.second) span = {tile, tile};
+  else span.first = std::min(span.first, tile), span.second = std::max(span.second, tile);
+}
+
+// The sample's colour: the texel of the level (or, magnified, bilinear on level 0).
+void TexelProjectKernel::sample_colour(const Splat& s, long i, long j, double u, double v, Sampler& bilinear,
+                                       const MipMap& finest, float colour[3]) {
+  const core::Texture& tex = *s.tex;
+  if (s.mi == 1) {
+    int tx = int(((i % tex.width) + tex.width) % tex.width), ty = int(((j % tex.height) + tex.height) % tex.height);
+    if (tex.wrap == core::Wrap::Clamp)
+      tx = int(std::clamp<long>(i, 0, tex.width - 1)), ty = int(std::clamp<long>(j, 0, tex.height - 1));
+    const glm::vec4& c = tex.texels[size_t(ty) * size_t(tex.width) + size_t(tx)];
+    colour[0] = c.r, colour[1] = c.g, colour[2] = c.b;
+    return;
+  }
+  Ops sampler_ops;
+  const bool repeat = s.texture->wrap == core::Wrap::Repeat;  // whole periods off in double
+  bilinear.sample(finest, float(repeat ? u - std::floor(u) : u), float(repeat ? v - std::floor(v) : v), 0, 0, 0, 0,
+                  colour, sampler_ops);
+  sampler_ops.line = 0;  // lines: counted by tile rows
+  ops_ += sampler_ops;
+  ops_.fetch -= 1;       // counted in kOpsPerTexel
+}
+
+// (S1 … S4): the area weights of the four pixels around the sample at (x, y), each
+// accumulated where this triangle is the one seen.
+template <class T>
+void TexelProjectKernel::splat(const Splat& s, T x, T y, const float colour[3]) {
+  const int width = scene_.camera.width, height = scene_.camera.height;
+  const T one = T(1.0f);
+  const T fx0 = floor_op(x), fy0 = floor_op(y);
+  const T fx = x - fx0, fy = y - fy0;
+  const T weight_t[4] = {(one - fx) * (one - fy), fx * fy, fx * (one - fy), (one - fx) * fy};  // S1 … S4
+  const float weight[4] = {float(weight_t[0]), float(weight_t[1]), float(weight_t[2]), float(weight_t[3])};
+  const int px0 = int(float(fx0)), py0 = int(float(fy0));
+  const int px[4] = {px0, px0 + 1, px0 + 1, px0};
+  const int py[4] = {py0, py0 + 1, py0, py0 + 1};
+  weight_sum_error_ = std::max(weight_sum_error_, std::abs(double(weight[0] + weight[1] + weight[2] + weight[3]) - 1.0));
+  // Splat units own interleaved 4×4 pixel tiles; a texel goes to the unit of its first
+  // pixel, and a splat into another unit's tile is a write across units (counted).
+  const int owner = (((px[0] + 4) >> 2) + ((py[0] + 4) >> 2)) % units_;
+  ++unit_texels_[size_t(owner)];
+  ++unit_round_robin_[size_t(texels_ % uint64_t(units_))];
+  for (int k = 0; k < 4; ++k) {
+    if (px[k] < 0 || py[k] < 0 || px[k] >= width || py[k] >= height || weight[k] <= 0) continue;
+    const size_t at = size_t(py[k]) * size_t(width) + size_t(px[k]);
+    if ((*s.visible)[at] != s.source + 1) continue;  // the depth test: another surface is seen here
+    for (int c = 0; c < 3; ++c) accumulated_[at * 4 + size_t(c)] += double(weight[k] * colour[c]);
+    accumulated_[at * 4 + 3] += double(weight[k]);
+    ++splats_;
+    ops_ += kOpsPerAccumulation;
+    if ((((px[k] + 4) >> 2) + ((py[k] + 4) >> 2)) % units_ != owner) ++cross_unit_splats_;
+  }
 }
 
 nlohmann::json TexelProjectKernel::details() const {

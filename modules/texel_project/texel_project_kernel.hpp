@@ -36,6 +36,9 @@
 
 namespace shadetlm::modules {
 
+class Sampler;
+struct MipMap;
+
 // The rotation of (1)–(2) for a unit normal n: rows of R, so that R·n = +z.
 struct PolygonRotation {
   double cos_a = 1, sin_a = 0, cos_b = 1, sin_b = 0;
@@ -90,8 +93,22 @@ class TexelProjectKernel {
   static constexpr Ops kOpsPerPixel{/*add*/ 3, /*mul*/ 6, /*div*/ 1};
 
  private:
+  // The splat pass, one triangle at a time, in the paper's steps (texel_project_kernel.cpp).
+  struct Splat;
   void splat_triangle(const glm::dvec3 P[3], const glm::dvec2 uv[3], const core::Texture& texture,
                       const std::vector<const core::Texture*>& levels, uint32_t source, const FramebufferKernel& fb);
+  void splat_constant(const Splat& s, const core::ClipPolygon& visible_part);
+  void rotate_into_plane(const glm::dvec3 P[3], const glm::dvec3& n, const glm::dvec4& clip_a, Splat& s,
+                         glm::dvec4& c_u, glm::dvec4& c_v);
+  void choose_level(const core::ClipPolygon& visible_part, const std::vector<const core::Texture*>& levels,
+                    const glm::dvec4& c_u, const glm::dvec4& c_v, Splat& s, glm::dvec2& uv_lo, glm::dvec2& uv_hi);
+  void bound_samples(const glm::dvec2& uv_lo, const glm::dvec2& uv_hi, Splat& s);
+  bool row_run(const Splat& s, long j, long& first, long& end, double& v, double& dv);
+  template <class T> void splat_samples(Splat& s);
+  void count_texel(Splat& s, long i, long j);
+  void sample_colour(const Splat& s, long i, long j, double u, double v, Sampler& bilinear, const MipMap& finest,
+                     float colour[3]);
+  template <class T> void splat(const Splat& s, T x, T y, const float colour[3]);
 
   const core::Scene& scene_;
   int units_;
