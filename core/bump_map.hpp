@@ -47,6 +47,7 @@ Texture surface_normal_map(const Texture& height, double height_scale, const Mes
 // made unit length again (the question the paper leaves open for filtered normals).
 std::vector<Texture> mip_levels(const Texture& base, bool renormalize);
 
+// ---- The io component (shadetlm::io, linked apart: file formats) from here on.
 // A mip chain as one tiled, mip-mapped EXR (float R, G, B; ZIP), with `attributes`
 // (string header attributes), written atomically; and read back: level 0 in the
 // returned texture, levels 1 … in its `mips`.

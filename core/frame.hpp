@@ -30,6 +30,7 @@ struct Frame {
   size_t pixel_count() const { return size_t(width) * height; }
 };
 
+// ---- The io component (shadetlm::io, linked apart: file formats) from here on.
 // Writes a single-part, ZIP-compressed EXR with every channel as 32-bit float and the
 // attributes as string attributes. The file appears only when complete: it is written
 // beside the target and renamed. Throws std::runtime_error naming the path on failure.
@@ -43,6 +44,7 @@ void write_png_preview(const std::string& path, const Frame& frame);
 // max_value; larger values white), also through a rename.
 void write_heat_map_png(const std::string& path, const Frame& frame, const std::string& channel, float max_value);
 
+// ---- The core component again.
 // Calls write(tmp) with a temporary path beside `path`, then renames it to `path`;
 // removes the temporary file if write throws.
 template <class F>

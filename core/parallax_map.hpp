@@ -189,6 +189,7 @@ struct ConeMap {
 };
 ConeMap cone_map(const HeightField& f, int slices, int levels);
 
+// ---- The io component (shadetlm::io, linked apart: file formats) from here on.
 // Maps as EXR: a volume's slices as channels "d.000" …, a cone map as "apex" and
 // "ratio", the parameters as shadetlm:* string attributes. Reading checks the kind and
 // the sizes and throws InputError naming the file and the field.

@@ -120,6 +120,7 @@ struct Scene {
 // definition of its vertices, shared by the golden model and the pipeline.
 Mesh to_world(const Object& object);
 
+// ---- The io component (shadetlm::io, linked apart: file formats) from here on.
 // Loads a scene file; `overrides` are "key=value" strings applied to the JSON first
 // (dotted keys, numeric array indices: "lights.0.intensity=2"). Throws InputError.
 Scene load_scene(const std::string& file, const std::vector<std::string>& overrides = {});

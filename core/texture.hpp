@@ -48,6 +48,7 @@ Texture make_gradient_noise(const ProceduralParams& p);
 Texture make_ridges(const ProceduralParams& p);        // sharp crests: 1 − |gradient noise|
 Texture make_steps(const ProceduralParams& p);         // value noise quantized to `levels`
 
+// ---- The io component (shadetlm::io, linked apart: file formats) from here on.
 // Image files: PNG (8 or 16 bit, through stb) and EXR (any of R, G, B, A, Y).
 Texture load_texture_file(const std::string& path);
 

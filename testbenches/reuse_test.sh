@@ -16,3 +16,8 @@ cmake -S "$src/examples/reuse" -B "$tmp/build" -DCMAKE_PREFIX_PATH="$tmp/stage" 
   -DCMAKE_CXX_FLAGS="$cxx_flags" -DCMAKE_EXE_LINKER_FLAGS="$link_flags" >/dev/null
 cmake --build "$tmp/build" -j2 >/dev/null
 SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1 "$tmp/build/normalize_testbench"
+# The blocks alone (COMPONENTS modules) bring no file formats along: the testbench
+# needs none of assimp, OpenEXR or stb.
+if readelf -d "$tmp/build/normalize_testbench" | grep -iE "NEEDED.*(assimp|openexr|OpenEXR|Imf|Iex|stb)"; then
+  echo "FAIL: linking shadetlm::modules pulled in the io component's libraries"; exit 1
+fi

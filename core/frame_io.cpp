@@ -1,0 +1,101 @@
+// Frames in and out of files (the io component): EXR and PNG.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+#include <stb_image_write.h>
+
+#include "shadetlm/core/frame.hpp"
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/texture.hpp"
+
+namespace shadetlm::core {
+
+void write_exr(const std::string& path, const Frame& frame) {
+  write_atomically(path, [&](const std::string& tmp) {
+    try {
+      Imf::Header header(frame.width, frame.height);
+      header.compression() = Imf::ZIP_COMPRESSION;
+      for (const auto& [k, v] : frame.attributes) header.insert(k, Imf::StringAttribute(v));
+      Imf::FrameBuffer fb;
+      for (const auto& c : frame.channels) {
+        header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
+        fb.insert(c.name, Imf::Slice(Imf::FLOAT, (char*)c.values.data(), sizeof(float),
+                                     sizeof(float) * frame.width));
+      }
+      Imf::OutputFile out(tmp.c_str(), header);
+      out.setFrameBuffer(fb);
+      out.writePixels(frame.height);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(path + ": cannot write the EXR: " + e.what());
+    }
+  });
+}
+
+Frame read_exr(const std::string& path) {
+  try {
+    Imf::InputFile in(path.c_str());
+    const Imf::Header& h = in.header();
+    const Imath::Box2i dw = h.dataWindow();
+    Frame f(dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1);
+    Imf::FrameBuffer fb;
+    for (auto it = h.channels().begin(); it != h.channels().end(); ++it) {
+      std::vector<float>& v = f.add(it.name());
+      // The slice's origin is pixel (0, 0) of the data window's coordinate system.
+      char* base = (char*)(v.data() - dw.min.x - size_t(dw.min.y) * f.width);
+      fb.insert(it.name(), Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * f.width));
+    }
+    in.setFrameBuffer(fb);
+    in.readPixels(dw.min.y, dw.max.y);
+    for (auto it = h.begin(); it != h.end(); ++it)
+      if (auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+        f.attributes[it.name()] = s->value();
+    return f;
+  } catch (const std::exception& e) {
+    throw InputError(path, "", std::string("cannot read the EXR: ") + e.what());
+  }
+}
+
+void write_png_preview(const std::string& path, const Frame& frame) {
+  const char* names[3] = {"R", "G", "B"};
+  std::vector<unsigned char> rgb(frame.pixel_count() * 3);
+  for (int k = 0; k < 3; ++k) {
+    const std::vector<float>& c = frame.at(names[k]);
+    for (size_t i = 0; i < frame.pixel_count(); ++i) {
+      double v = std::isfinite(c[i]) ? std::clamp(double(c[i]), 0.0, 1.0) : 0.0;
+      rgb[i * 3 + k] = static_cast<unsigned char>(std::lround(linear_to_srgb(v) * 255.0));
+    }
+  }
+  write_atomically(path, [&](const std::string& tmp) {
+    if (!stbi_write_png(tmp.c_str(), frame.width, frame.height, 3, rgb.data(), frame.width * 3))
+      throw std::runtime_error(path + ": cannot write the PNG");
+  });
+}
+
+void write_heat_map_png(const std::string& path, const Frame& frame, const std::string& channel, float max_value) {
+  const std::vector<float>& c = frame.at(channel);
+  std::vector<unsigned char> rgb(frame.pixel_count() * 3);
+  // A ramp black → blue → red → yellow → white, piecewise linear in the value.
+  static const float stops[5][3] = {{0, 0, 0}, {0.1f, 0.2f, 0.9f}, {0.9f, 0.1f, 0.1f}, {1, 0.9f, 0.1f}, {1, 1, 1}};
+  for (size_t i = 0; i < frame.pixel_count(); ++i) {
+    const float v = std::isfinite(c[i]) && max_value > 0 ? std::clamp(c[i] / max_value, 0.0f, 1.0f) : 0.0f;
+    const float x = v * 4;
+    const int k = std::min(3, int(x));
+    const float f = x - float(k);
+    for (int j = 0; j < 3; ++j)
+      rgb[i * 3 + size_t(j)] = static_cast<unsigned char>(std::lround(255 * (stops[k][j] + (stops[k + 1][j] - stops[k][j]) * f)));
+  }
+  write_atomically(path, [&](const std::string& tmp) {
+    if (!stbi_write_png(tmp.c_str(), frame.width, frame.height, 3, rgb.data(), frame.width * 3))
+      throw std::runtime_error(path + ": cannot write the PNG");
+  });
+}
+
+}  // namespace shadetlm::core

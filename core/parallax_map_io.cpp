@@ -1,0 +1,100 @@
+// Distance and cone maps in and out of EXR files (the io component).
+#include <cstdio>
+#include <string>
+
+#include "shadetlm/core/frame.hpp"
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/parallax_map.hpp"
+
+namespace shadetlm::core {
+
+namespace {
+
+std::string slice_name(int k) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "d.%03d", k);
+  return buf;
+}
+
+int attribute_int(const Frame& f, const std::string& path, const std::string& name) {
+  auto it = f.attributes.find(name);
+  if (it == f.attributes.end()) throw InputError(path, name, "missing from the header");
+  try {
+    return std::stoi(it->second);
+  } catch (const std::exception&) {
+    throw InputError(path, name, "is not a number: \"" + it->second + "\"");
+  }
+}
+
+void check_kind(const Frame& f, const std::string& path, const std::string& kind) {
+  auto it = f.attributes.find("shadetlm:map");
+  if (it == f.attributes.end())
+    throw InputError(path, "shadetlm:map", "missing: not a map written by shadetlm precompute");
+  if (it->second != kind && !(kind == "distance" && it->second == "refined"))
+    throw InputError(path, "shadetlm:map", "is \"" + it->second + "\", expected \"" + kind + "\"");
+}
+
+}  // namespace
+
+void write_volume_map(const std::string& path, const VolumeMap& map, const std::string& kind) {
+  Frame f(map.width, map.height);
+  f.attributes = map.params;
+  f.attributes["shadetlm:map"] = kind;
+  const size_t cells = size_t(map.width) * size_t(map.height);
+  for (int k = 0; k < map.slices; ++k) {
+    std::vector<float>& c = f.add(slice_name(k));
+    std::copy(map.values.begin() + ptrdiff_t(size_t(k) * cells), map.values.begin() + ptrdiff_t(size_t(k + 1) * cells),
+              c.begin());
+  }
+  write_exr(path, f);
+}
+
+VolumeMap read_volume_map(const std::string& path, const std::string& kind) {
+  const Frame f = read_exr(path);
+  check_kind(f, path, kind);
+  VolumeMap m;
+  m.width = f.width, m.height = f.height;
+  m.slices = attribute_int(f, path, "shadetlm:slices");
+  if (m.slices < 1 || m.slices > 1024) throw InputError(path, "shadetlm:slices", "must be in [1, 1024]");
+  const size_t cells = f.pixel_count();
+  m.values.resize(cells * size_t(m.slices));
+  for (int k = 0; k < m.slices; ++k) {
+    const Channel* c = f.find(slice_name(k));
+    if (!c) throw InputError(path, slice_name(k), "channel missing (the header says " + std::to_string(m.slices) + " slices)");
+    for (size_t i = 0; i < cells; ++i) {
+      if (!std::isfinite(c->values[i]) || c->values[i] < 0)
+        throw InputError(path, slice_name(k), "holds a negative or non-finite distance");
+      m.values[size_t(k) * cells + i] = c->values[i];
+    }
+  }
+  m.params = f.attributes;
+  return m;
+}
+
+void write_cone_map(const std::string& path, const ConeMap& map) {
+  Frame f(map.width, map.height);
+  f.attributes = map.params;
+  f.add("apex") = map.apex;
+  f.add("ratio") = map.ratio;
+  write_exr(path, f);
+}
+
+ConeMap read_cone_map(const std::string& path) {
+  const Frame f = read_exr(path);
+  check_kind(f, path, "cone");
+  ConeMap m;
+  m.width = f.width, m.height = f.height;
+  m.slices = attribute_int(f, path, "shadetlm:slices");
+  if (m.slices < 1 || m.slices > 1024) throw InputError(path, "shadetlm:slices", "must be in [1, 1024]");
+  for (const char* name : {"apex", "ratio"}) {
+    const Channel* c = f.find(name);
+    if (!c) throw InputError(path, name, "channel missing");
+    for (float v : c->values)
+      if (!std::isfinite(v) || v < 0) throw InputError(path, name, "holds a negative or non-finite value");
+    (std::string(name) == "apex" ? m.apex : m.ratio) = c->values;
+  }
+  m.params = f.attributes;
+  return m;
+}
+
+}  // namespace shadetlm::core
