@@ -112,5 +112,7 @@ TEST_CASE("a block's settings are checked against its declaration", "[extension]
   // A second block of the same name, or after a block that is not there, is refused.
   modules::PipelineDecl d = with_tint();
   CHECK_THROWS_AS(d.insert_after("lighting", tint_block()), std::invalid_argument);
-  CHECK_THROWS_AS(d.insert_after("shadow_map", modules::BlockDecl{"other"}), std::invalid_argument);
+  modules::BlockDecl other = tint_block();
+  other.name = "other";
+  CHECK_THROWS_AS(d.insert_after("shadow_map", other), std::invalid_argument);
 }

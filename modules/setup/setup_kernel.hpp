@@ -51,7 +51,6 @@ class SetupKernel {
   void set_progress(std::function<void(double)> progress) { progress_ = std::move(progress); }
   uint64_t triangles_in() const { return triangles_in_; }
   uint64_t triangles_out() const { return triangles_out_; }
-  const core::Scene& scene() const { return scene_; }
 
  private:
   struct Vertex {  // a vertex of a clipped piece: exact (double) from the clipper
