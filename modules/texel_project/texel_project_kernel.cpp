@@ -301,7 +301,6 @@ void TexelProjectKernel::splat_samples(Splat& s) {
     const T step_x = T(float(s.along_u.x / s.GW)), step_y = T(float(s.along_u.y / s.GW));
     ops_ += Ops{/*add*/ 3, /*mul*/ 6, /*div*/ 2};
     for (long i = first; i <= end; ++i, xr += step_x, yr += step_y) {
-      const double u = (double(i) + 0.5) / s.GW;
       // Back to the screen: (x', y') − A (stepped along the row: 2 add), then M*; behind
       // the eye: nothing to splat.
       ops_ += kOpsProjection;
@@ -324,6 +323,7 @@ void TexelProjectKernel::splat_samples(Splat& s) {
       }
       count_texel(s, i, j);
       float colour[3];
+      const double u = (double(i) + 0.5) / s.GW;  // only for a sample on the frame
       sample_colour(s, i, j, u, v, bilinear, finest, colour);
       splat(s, x, y, colour);
     }
