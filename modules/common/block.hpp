@@ -78,6 +78,9 @@ class BlockInfo {
   // its output bound to the next block's input (left unbound at the end of the chain).
   virtual tlm::tlm_target_socket<32>* input() { return nullptr; }
   virtual void bind_output(tlm::tlm_target_socket<32>&) {}
+  // The last block of a pass: its output reaches the next pass, which takes the end of
+  // the pass and no packets (so none are sent).
+  void set_last_of_pass() { last_of_pass_ = true; }
 
   // Inspection (docs/inspecting.md): waveforms of a region, the transaction timeline.
   // `filter`: the traced region and triangles (nullptr: everything), which limits the
@@ -96,6 +99,7 @@ class BlockInfo {
   int probe_ = -1;
   Timeline* timeline_ = nullptr;
   uint32_t track_ = 0;
+  bool last_of_pass_ = false;
 
   // A pass ends here once this block has put out its last result.
   void pass_end(PassEnd& e) const { e.cycle = std::max(e.cycle, schedule().free_cycle() + schedule().timing().latency); }
@@ -166,7 +170,11 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
  private:
   // The next block's interface, once bound (what out-> returns, without the port's
   // checks on every packet).
-  void end_of_elaboration() override { next_ = out.size() > 0 ? out.operator->() : nullptr; }
+  // Span packets stop at the last block of their pass: only its end goes on to the next.
+  void end_of_elaboration() override {
+    next_ = out.size() > 0 ? out.operator->() : nullptr;
+    packet_next_ = last_of_pass_ ? nullptr : next_;
+  }
 
   void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) override {
     if (is_pass_end(trans)) return end_pass(trans, delay);
@@ -177,7 +185,7 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
       // of its own) because every packet crosses every elaborated block.
       ++stats_.bypassed;
       trans.set_response_status(tlm::TLM_OK_RESPONSE);
-      if (next_) next_->b_transport(trans, delay);
+      if (packet_next_) packet_next_->b_transport(trans, delay);
       return;
     }
     work(trans, p, delay);
@@ -207,12 +215,12 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
         timeline_->add(track_, schedule_.last_start(), schedule_.last_busy(), uint32_t(p.count), p.tri->id);
     }
     trans.set_response_status(tlm::TLM_OK_RESPONSE);
-    if (!next_) return;
+    if (!packet_next_) return;
     if (delay > sc_core::SC_ZERO_TIME) {  // now = arrival − delay: the new delay follows from the old
       sc_core::sc_time later = delay + period_ * double(p.cycle - arrival);
-      next_->b_transport(trans, later);
+      packet_next_->b_transport(trans, later);
     } else {
-      forward(next_, trans, p.cycle, period_, sc_core::sc_time_stamp());
+      forward(packet_next_, trans, p.cycle, period_, sc_core::sc_time_stamp());
     }
   }
 
@@ -241,7 +249,8 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
   Schedule schedule_;
   sc_core::sc_time period_;
   BlockStats stats_;
-  tlm::tlm_fw_transport_if<>* next_ = nullptr;
+  tlm::tlm_fw_transport_if<>* next_ = nullptr;         // the next block
+  tlm::tlm_fw_transport_if<>* packet_next_ = nullptr;  // the same, unless this block ends its pass
 };
 
 }  // namespace shadetlm::modules

@@ -83,7 +83,10 @@ class Top : public sc_core::sc_module {
   Top(sc_core::sc_module_name name, Pipeline& pipeline, const Inspect& inspect)
       : sc_core::sc_module(name), period_(1.0 / pipeline.clock_mhz(), sc_core::SC_US) {
     for (auto& b : pipeline.blocks()) modules_.push_back(b.block->module(b.name.c_str(), b.timing, period_));
-    for (size_t i = 0; i + 1 < modules_.size(); ++i) modules_[i]->bind_output(*modules_[i + 1]->input());
+    for (size_t i = 0; i + 1 < modules_.size(); ++i) {
+      modules_[i]->bind_output(*modules_[i + 1]->input());
+      if (pipeline.blocks()[i + 1].block->kind() == Block::Kind::Frame) modules_[i]->set_last_of_pass();
+    }
 
     const core::Camera& camera = pipeline.scene().camera;
     region_ = inspect.region;

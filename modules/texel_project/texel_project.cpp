@@ -19,7 +19,7 @@ BlockStats TexelProject::stats() const {
 
 void TexelProject::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
   trans.set_response_status(tlm::TLM_OK_RESPONSE);
-  if (!is_pass_end(trans)) return;  // the main pass's packets, forwarded to it: nothing to do
+  if (!is_pass_end(trans)) return;  // (none come: the main pass's last block keeps them)
   PassEnd& e = *reinterpret_cast<PassEnd*>(trans.get_data_ptr());  // the end of the main pass: the frame
   if (e.framebuffer) {
     kernel_.run(*e.framebuffer);

@@ -277,7 +277,8 @@ bool TexelProjectKernel::row_run(const Splat& s, long j, long& first, long& end,
   return true;
 }
 
-// Every sample of the triangle: back to the screen through M*, then splatted.
+// Every sample of the triangle: back to the screen through M*; those that land on the
+// frame are taken (take_sample).
 template <class T>
 void TexelProjectKernel::splat_samples(Splat& s) {
   const int width = scene_.camera.width, height = scene_.camera.height;
@@ -321,14 +322,21 @@ void TexelProjectKernel::splat_samples(Splat& s) {
           nonfinite_positions += !std::isfinite(float(x)) + !std::isfinite(float(y));
         continue;
       }
-      count_texel(s, i, j);
-      float colour[3];
-      const double u = (double(i) + 0.5) / s.GW;  // only for a sample on the frame
-      sample_colour(s, i, j, u, v, bilinear, finest, colour);
-      splat(s, x, y, colour);
+      take_sample(s, i, j, v, x, y, bilinear, finest);
     }
   }
   nonfinite_ += nonfinite_positions;
+}
+
+// A sample on the frame: its texel counted, its colour, its splat.
+template <class T>
+void TexelProjectKernel::take_sample(Splat& s, long i, long j, double v, T x, T y, Sampler& bilinear,
+                                     const MipMap& finest) {
+  count_texel(s, i, j);
+  float colour[3];
+  const double u = (double(i) + 0.5) / s.GW;
+  sample_colour(s, i, j, u, v, bilinear, finest, colour);
+  splat(s, x, y, colour);
 }
 
 // A texel on the frame: its operations, and the tile it is read from.
