@@ -244,7 +244,7 @@ void print_summary(const RenderOptions& opt, const core::Scene& scene, const mod
   if (opt.compare) print_error(stats["error"], reference_s);
   if (!inspect.vcd.empty())
     std::cout << "  traced " << r.trace_records << " pixel outputs into " << inspect.vcd << " (view: gtkwave "
-              << inspect.vcd << " " << inspect.vcd.substr(0, inspect.vcd.size() - 4) << ".gtkw)\n";
+              << inspect.vcd << " " << gtkw_path_of(inspect.vcd) << ")\n";
   if (!inspect.timeline.empty()) std::cout << "  timeline: " << inspect.timeline << "\n";
   std::cout << "  wrote " << opt.output << (opt.preview.empty() ? "" : " and " + opt.preview)
             << (opt.heat_map.empty() ? "" : " and " + opt.heat_map)

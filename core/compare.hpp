@@ -1,4 +1,5 @@
 #pragma once
+// The io component (shadetlm::io), all of this header.
 // Frame comparison, per layer: RGB (R, G, B, and A when both frames have it), Z
 // (depth) and N (N.X, N.Y, N.Z). A pixel's error in a layer is the largest absolute
 // difference over the layer's channels; two equal values (infinities included) differ

@@ -1,4 +1,5 @@
 #pragma once
+// The io component (shadetlm::io), all of this header.
 // A strict view of one JSON object of an input file: every read names the field in
 // its error, numbers must be finite, and finish() rejects keys nobody read (a typo in
 // a key must not silently fall back to a default).

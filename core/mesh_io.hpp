@@ -1,4 +1,5 @@
 #pragma once
+// The io component (shadetlm::io), all of this header.
 #include <string>
 
 #include "shadetlm/core/mesh.hpp"

@@ -182,7 +182,7 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
     if (kernel_.bypass(p)) {
       // Through the bypass wire: no work, no cycles; the packet goes on with the time
       // annotation it came with. Kept this short (a tail call, the work in a function
-      // of its own) because every packet crosses every elaborated block.
+      // of its own) because every packet crosses every elaborated block of its pass.
       ++stats_.bypassed;
       trans.set_response_status(tlm::TLM_OK_RESPONSE);
       if (packet_next_) packet_next_->b_transport(trans, delay);
