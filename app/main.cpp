@@ -25,7 +25,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::vector<app::Command> commands = {app::add_render_command(app), app::add_reference_command(app),
                                         app::add_compare_command(app), app::add_bench_command(app),
-                                        app::add_precompute_command(app), app::add_parallax_bench_command(app)};
+                                        app::add_precompute_command(app), app::add_parallax_bench_command(app),
+                                        app::add_timing_check_command(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

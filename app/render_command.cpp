@@ -110,7 +110,7 @@ struct RenderOptions {
   std::string output = "out/frame.exr", preview, heat_map, stats, engine = "systemc";
   float heat_max = 32;
   bool compare = false;
-  std::string vcd, region, triangles, timeline;
+  std::string vcd, region, triangles, timeline, timing_log;
 };
 
 // What the run records for inspection (waveforms, timeline, traced region and triangles),
@@ -120,6 +120,7 @@ modules::Inspect inspection_of(const RenderOptions& opt, const core::Scene& scen
   inspect.vcd = opt.vcd;
   if (!opt.stats.empty()) inspect.bin_cycles = 10000;  // utilization over time, in the statistics
   inspect.timeline = opt.timeline;
+  inspect.timing_log = !opt.timing_log.empty();
   if (!opt.region.empty()) parse_region(opt.region, inspect.region), inspect.region_given = true;
   if (!opt.triangles.empty()) {
     if (!inspect.region_given)
@@ -130,8 +131,9 @@ modules::Inspect inspection_of(const RenderOptions& opt, const core::Scene& scen
     throw core::InputError("--vcd", inspect.vcd, "the waveform file must end in .vcd");
   if (!modules::kTracing && (!inspect.vcd.empty() || !inspect.timeline.empty()))
     throw core::InputError("--vcd", inspect.vcd, "this build has tracing compiled out (SHADETLM_TRACING=OFF)");
-  if (opt.engine == "loop" && (!inspect.vcd.empty() || !inspect.timeline.empty()))
-    throw core::InputError("--engine", "loop", "the plain loop has no time: waveforms and timelines need systemc");
+  if (opt.engine == "loop" && (!inspect.vcd.empty() || !inspect.timeline.empty() || inspect.timing_log))
+    throw core::InputError("--engine", "loop",
+                           "the plain loop has no time: waveforms, timelines and timing logs need systemc");
   return inspect;
 }
 
@@ -157,6 +159,7 @@ void check_before_simulation(const RenderOptions& opt, const core::Scene& scene,
   check_writable(inspect.vcd, "--vcd");
   check_writable(gtkw_path_of(inspect.vcd), "--vcd");
   check_writable(inspect.timeline, "--timeline");
+  check_writable(opt.timing_log, "--timing-log");
 }
 
 // Should a later write fail, the inspection files of this run go too.
@@ -190,8 +193,9 @@ nlohmann::json statistics_of(const RenderOptions& opt, const modules::RenderResu
 
 // Writes the frame, its preview and heat map and the statistics; on failure takes back
 // what this run wrote, inspection files included, and rethrows.
-void write_outputs(const RenderOptions& opt, const core::Frame& frame, const nlohmann::json& stats,
+void write_outputs(const RenderOptions& opt, const modules::RenderResult& r, const nlohmann::json& stats,
                    const modules::Inspect& inspect) {
+  const core::Frame& frame = r.frame;
   // Frame, preview and statistics appear together or not at all: the
   // statistics go to a temporary first and are renamed after the frame.
   const std::string stats_tmp = opt.stats.empty() ? "" : core::temporary_path_for(opt.stats);
@@ -201,9 +205,17 @@ void write_outputs(const RenderOptions& opt, const core::Frame& frame, const nlo
       out << stats.dump(2) << "\n";
       if (!out) throw std::runtime_error(opt.stats + ": cannot write the statistics");
     }
+    if (!opt.timing_log.empty())
+      core::write_atomically(opt.timing_log, [&](const std::string& tmp) {
+        std::ofstream out(tmp, std::ios::binary);
+        out << r.timing_log;
+        out.flush();
+        if (!out) throw std::runtime_error(opt.timing_log + ": cannot write the timing log");
+      });
     write_frame(frame, opt.output, opt.preview, opt.heat_map, opt.heat_max);
   } catch (...) {
     if (!stats_tmp.empty()) core::remove_quietly(stats_tmp);
+    if (!opt.timing_log.empty()) core::remove_quietly(opt.timing_log);
     take_back_inspection(inspect);
     throw;
   }
@@ -214,6 +226,7 @@ void write_outputs(const RenderOptions& opt, const core::Frame& frame, const nlo
       core::remove_quietly(opt.output);
       if (!opt.preview.empty()) core::remove_quietly(opt.preview);
       if (!opt.heat_map.empty()) core::remove_quietly(opt.heat_map);
+      if (!opt.timing_log.empty()) core::remove_quietly(opt.timing_log);
       take_back_inspection(inspect);
       throw;
     }
@@ -274,6 +287,8 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--trace-region", opt->region, "pixels traced into the VCD and the timeline: x0,y0,x1,y1");
   cmd->add_option("--trace-triangles", opt->triangles, "triangles traced: i..j (ids in drawing order)");
   cmd->add_option("--timeline", opt->timeline, "transaction timeline as Chrome trace-event JSON (Perfetto)");
+  cmd->add_option("--timing-log", opt->timing_log,
+                  "every pixel's start and hand-over cycle at every block, for `shadetlm timing-check`");
   return {cmd, [opt]() {
             const core::Scene scene = opt->scene.load();
             const modules::Inspect inspect = inspection_of(*opt, scene);
@@ -282,7 +297,7 @@ Command add_render_command(CLI::App& app) {
             double reference_s = 0;
             const nlohmann::json stats = statistics_of(*opt, r, scene, &reference_s);
             describe(r.frame, scene, opt->scene, opt->engine == "loop" ? "pipeline-loop" : "pipeline");
-            write_outputs(*opt, r.frame, stats, inspect);
+            write_outputs(*opt, r, stats, inspect);
             print_summary(*opt, scene, r, stats, inspect, reference_s);
             return 0;
           }};

@@ -21,7 +21,7 @@ class TintKernel {
     tinted_ += uint64_t(p.count);
   }
   bool bypass(const modules::SpanPacket&) const { return false; }
-  uint64_t work(const modules::SpanPacket& p) const { return uint64_t(p.count); }
+  modules::Work work(const modules::SpanPacket&) const { return {nullptr, 1}; }  // a pixel a cycle
   const modules::Ops& ops() const { return ops_; }
   void set_capture(bool) {}
   static std::vector<std::string> trace_names() { return {"r"}; }

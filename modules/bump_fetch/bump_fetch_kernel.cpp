@@ -73,17 +73,14 @@ const BumpFetchKernel::Map& BumpFetchKernel::build(const core::Scene& scene, con
 void BumpFetchKernel::fetch(SpanPacket& p) {
   const TriangleSetup& t = *p.tri;
   if (!t.bump_frame) {  // no tangent frame: the unperturbed normal (+z), no derivatives
-    last_cycles_ = uint64_t(p.count);
-    for (int i = 0; i < p.count; ++i) p.bump[0][i] = 0, p.bump[1][i] = 0, p.bump[2][i] = 1;
+    for (int i = 0; i < p.count; ++i) p.bump[0][i] = 0, p.bump[1][i] = 0, p.bump[2][i] = 1, work_[i] = 1;
     if (capture_)
       for (int c = 0; c < 3; ++c)
         for (int i = 0; i < p.count; ++i) captured_[c][i] = 0;
     return;
   }
   const Map& map = *map_of_object_[size_t(t.object)];
-  const uint64_t cycles_before = sampler_.cycles();
-  sample_span(t, p, map.mip, sampler_, p.bump, ops_, uv_range_, capture_ ? captured_ : nullptr);
-  last_cycles_ = sampler_.cycles() - cycles_before;
+  sample_span(t, p, map.mip, sampler_, p.bump, ops_, uv_range_, work_, capture_ ? captured_ : nullptr);
   for (int c = 0; c < 3; ++c) fetched_range_.add(p.bump[c], p.count);
 }
 

@@ -38,7 +38,7 @@ class BumpFetchKernel {
   // float32 datapaths; the non-finite values among the block's outputs.
   NumberStats numbers() const { return {"float32", nonfinite_, {}}; }
   const Ops& ops() const { return ops_; }
-  uint64_t work(const SpanPacket&) const { return last_cycles_; }  // four texels a cycle
+  Work work(const SpanPacket&) const { return {work_, 0}; }  // four texels a cycle, at least one
   bool bypass(const SpanPacket& p) const { return !core::bump_path(p.tri->material->path); }
 
   double precompute_seconds() const { return precompute_s_; }
@@ -66,7 +66,7 @@ class BumpFetchKernel {
   std::vector<std::unique_ptr<Map>> maps_;
   std::vector<const Map*> map_of_object_;  // by object index; nullptr: no bump map
   double precompute_s_ = 0;
-  uint64_t last_cycles_ = 0;
+  uint16_t work_[kSpanMax];
   Ops ops_;
   ValueRange uv_range_, fetched_range_;
   bool capture_ = false;

@@ -29,7 +29,7 @@ class BumpPerturbKernel {
   // float32 datapaths; the non-finite values among the block's outputs.
   NumberStats numbers() const { return {"float32", nonfinite_, {}}; }
   const Ops& ops() const { return ops_; }
-  uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }
+  Work work(const SpanPacket&) const { return {nullptr, 1}; }  // a pixel a cycle
   bool bypass(const SpanPacket& p) const { return p.tri->material->path != core::ShadingPath::BumpClassic; }
   Ranges ranges() const { return {{"n_x_pv", n_x_pv_range_}, {"pu_x_n", pu_x_n_range_}, {"perturbed", perturbed_range_}}; }
 

@@ -1,14 +1,11 @@
 #pragma once
-// The SystemC side shared by the blocks: timing bookkeeping, statistics, and Stage<K>,
-// the thin TLM-2.0 module around a span kernel K.
+// The SystemC side shared by the blocks: statistics, the main pass's timing (PixelLine,
+// modules/common/timing.hpp) and Stage<K>, the thin TLM-2.0 module around a span kernel K.
 //
-// Timing model (docs/pipeline.md): each block has a latency L and an initiation
-// interval II (cycles per unit of work: a pixel, a walker step, a pixel-light, a
-// triangle). Blocks are joined by unbounded queues: a packet arriving at cycle t starts
-// at max(t, the cycle the block becomes free), keeps it busy II·work cycles, and
-// reaches the next block L cycles after it started. Arrival cycles travel in the
-// packet; the b_transport delay annotation carries the same time relative to the
-// simulation time, zero once that has passed (loosely timed, no wait() per pixel).
+// A span packet travels through the whole chain by b_transport, each block computing
+// its values and saying how much work each pixel was; once back at the raster, the
+// packet's pixels are timed in one sweep (no wait() per pixel: loosely timed). The
+// packet's delay annotation is the cycle the raster sent it, unchanged along the chain.
 #include <algorithm>
 #include <cstdint>
 #include <string>
@@ -25,54 +22,47 @@
 #include "shadetlm/modules/common/packet.hpp"
 #include "shadetlm/modules/common/report.hpp"
 #include "shadetlm/modules/common/timeline.hpp"
+#include "shadetlm/modules/common/timing.hpp"
 #include "shadetlm/modules/common/trace.hpp"
 
 namespace shadetlm::modules {
 
 
-// A block's calendar: when it is free, how long it has been busy.
+// A frame pass's calendar (texel_project): work arriving at `arrival` starts when the
+// block is free and keeps it busy II·work cycles.
 class Schedule {
  public:
   explicit Schedule(Timing t) : timing_(t) {}
-  // Books II·work cycles for work arriving at `arrival`; returns the cycle its first
-  // result reaches the next block.
-  [[gnu::always_inline]] uint64_t occupy(uint64_t arrival, uint64_t work) {
+  void occupy(uint64_t arrival, uint64_t work) {
     const uint64_t start = std::max(arrival, free_);
-    const uint64_t busy = timing_.ii * work;
-    free_ = start + busy;
-    busy_ += busy;
-    last_start_ = start;
-    last_busy_ = busy;
-    if (bin_cycles_ > 0) histogram(start, busy);
-    return start + timing_.latency;
+    times_.add_busy(int64_t(start), timing_.ii * work);
+    free_ = start + timing_.ii * work;
+    times_.last = int64_t(free_ + timing_.latency) - 1;
   }
-  uint64_t free_cycle() const { return free_; }
-  uint64_t busy_cycles() const { return busy_; }
-  uint64_t last_start() const { return last_start_; }
-  uint64_t last_busy() const { return last_busy_; }
+  const BlockTimes& times() const { return times_; }
+  BlockTimes& times() { return times_; }
   const Timing& timing() const { return timing_; }
 
-  // Busy cycles per bin of `bin_cycles` (0: not kept).
-  void keep_histogram(uint64_t bin_cycles) { bin_cycles_ = bin_cycles; }
-  const std::vector<uint64_t>& busy_per_bin() const { return bins_; }
-
  private:
-  // Out of line, so that occupy(), called for every packet, stays small and inlined.
-  void histogram(uint64_t start, uint64_t busy);
-
   Timing timing_;
-  uint64_t free_ = 0, busy_ = 0, last_start_ = 0, last_busy_ = 0, bin_cycles_ = 0;
-  std::vector<uint64_t> bins_;
+  uint64_t free_ = 0;
+  BlockTimes times_;
 };
 
 // What every block reports, whatever its kind.
-class BlockInfo {
+class BlockInfo : public TimedObserver {
  public:
   virtual ~BlockInfo() = default;
   virtual std::string block_name() const = 0;
   virtual BlockStats stats() const = 0;
-  virtual const Schedule& schedule() const = 0;
-  virtual Schedule& schedule() = 0;
+  virtual const Timing& timing() const = 0;
+  virtual const BlockTimes& times() const = 0;
+  // Where its times are kept: the main pass's PixelLine, at `slot` (the raster is 0; the
+  // source, setup, reads the raster's FIFO depth from it). Frame passes keep their own.
+  virtual void join_line(PixelLine*, int /*slot*/) {}
+  // (Inspection, once a packet's pixels are timed: TimedObserver::timed.)
+  // Keep utilization over time in bins of `cycles`.
+  virtual void keep_histogram(uint64_t cycles) = 0;
 
   // Its place in a chain: the socket packets come in by (none at a pass's source), and
   // its output bound to the next block's input (left unbound at the end of the chain).
@@ -101,8 +91,25 @@ class BlockInfo {
   uint32_t track_ = 0;
   bool last_of_pass_ = false;
 
-  // A pass ends here once this block has put out its last result.
-  void pass_end(PassEnd& e) const { e.cycle = std::max(e.cycle, schedule().free_cycle() + schedule().timing().latency); }
+  // Records the timed packet's pixels at `slot` of `line`: each pixel's values at the
+  // cycle the block hands it on, and a timeline slice from its first start to its last
+  // hand-over.
+  template <class Values>
+  void record_timed(const SpanPacket& p, const PixelLine& line, int slot, Values values) {
+    if (!triangle_kept(p.tri->id)) return;
+    if (tracer_ && probe_ >= 0 && tracer_->region().covers(p.y, p.x0, p.x0 + p.count, p.tri->id)) {
+      double v[16];
+      for (int i = 0; i < p.count; ++i) {
+        if (!tracer_->region().contains(p.x0 + i, p.y)) continue;
+        values(i, v);
+        tracer_->record(probe_, uint64_t(line.handed(slot, i)), p.x0 + i, p.y, p.tri->id, v);
+      }
+    }
+    if (timeline_ && (!filter_ || filter_->covers(p.y, p.x0, p.x0 + p.count, p.tri->id))) {
+      const int64_t first = line.start(slot, 0), last = line.handed(slot, p.count - 1);
+      timeline_->add(track_, uint64_t(first), uint64_t(last + 1 - first), uint32_t(p.count), p.tri->id);
+    }
+  }
 };
 
 // Whether a transaction is the end of a pass (PassEnd) rather than a packet: a
@@ -143,15 +150,16 @@ class PacketTarget : public tlm::tlm_fw_transport_if<> {
   unsigned int transport_dbg(tlm::tlm_generic_payload&) override { return 0; }
 };
 
-// The SystemC module around a span kernel: packets in, kernel, packets out.
+// The SystemC module around a span kernel: packets in, kernel, packets out; the work
+// of each pixel into the main pass's PixelLine.
 template <class Kernel>
 class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
  public:
   tlm::tlm_target_socket<32> in;
   tlm_utils::simple_initiator_socket_optional<Stage> out;  // unbound at the last block
 
-  Stage(sc_core::sc_module_name name, Kernel& kernel, Timing timing, sc_core::sc_time period)
-      : sc_core::sc_module(name), in("in"), out("out"), kernel_(kernel), schedule_(timing), period_(period) {
+  Stage(sc_core::sc_module_name name, Kernel& kernel, Timing timing, sc_core::sc_time)
+      : sc_core::sc_module(name), in("in"), out("out"), kernel_(kernel), timing_(timing) {
     in.bind(*this);
   }
 
@@ -159,13 +167,26 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
   BlockStats stats() const override {
     BlockStats s = stats_;
     s.ops = kernel_.ops();
-    s.busy_cycles = schedule_.busy_cycles();
+    const BlockTimes& t = times();
+    s.busy_cycles = t.busy, s.starved_cycles = t.starved, s.blocked_cycles = t.blocked;
+    s.fifo_cycles = t.fifo_cycles, s.fifo_peak = t.fifo_peak;
     return s;
   }
-  const Schedule& schedule() const override { return schedule_; }
-  Schedule& schedule() override { return schedule_; }
+  const Timing& timing() const override { return timing_; }
+  const BlockTimes& times() const override { return line_ ? line_->times(slot_) : no_times_; }
+  void join_line(PixelLine* line, int slot) override { line_ = line, slot_ = slot; }
+  void keep_histogram(uint64_t cycles) override {
+    if (line_) line_->times(slot_).bin_cycles = cycles;
+  }
   tlm::tlm_target_socket<32>* input() override { return &in; }
   void bind_output(tlm::tlm_target_socket<32>& next) override { out.bind(next); }
+
+  void timed(const SpanPacket& p) override {  // its waveforms and timeline slice
+    if (!kTracing || !line_ || p.count == 0 || !worked_) return;
+    record_timed(p, *line_, slot_, [&](int i, double* v) {
+      if (traced_) kernel_.trace(p, i, v);
+    });
+  }
 
  private:
   // The next block's interface, once bound (what out-> returns, without the port's
@@ -180,10 +201,12 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
     if (is_pass_end(trans)) return end_pass(trans, delay);
     SpanPacket& p = *reinterpret_cast<SpanPacket*>(trans.get_data_ptr());
     if (kernel_.bypass(p)) {
-      // Through the bypass wire: no work, no cycles; the packet goes on with the time
-      // annotation it came with. Kept this short (a tail call, the work in a function
-      // of its own) because every packet crosses every elaborated block of its pass.
+      // Through the bypass wire: no work (a cycle a pixel, docs/pipeline.md). Kept this
+      // short (a tail call, the work in a function of its own) because every packet
+      // crosses every elaborated block of its pass.
       ++stats_.bypassed;
+      if (line_) line_->set_work(slot_, Work{});
+      worked_ = false;
       trans.set_response_status(tlm::TLM_OK_RESPONSE);
       if (packet_next_) packet_next_->b_transport(trans, delay);
       return;
@@ -191,64 +214,36 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
     work(trans, p, delay);
   }
 
-  [[gnu::noinline]] void work(tlm::tlm_generic_payload& trans, SpanPacket& p, const sc_core::sc_time& delay) {
-    // The packet's delay annotation is its arrival cycle's time relative to now: where
-    // it is positive, the delay it leaves with is that plus the cycles it spent here
-    // (no call into the kernel for the time, a packet and block); else the time is
-    // asked for.
-    const uint64_t arrival = p.cycle;
-    if (!kTracing || (!tracer_ && !timeline_)) {  // nothing inspected: the fast path
-      kernel_.process(p);
-      ++stats_.packets;
-      stats_.pixels += uint64_t(p.count);
-      p.cycle = schedule_.occupy(p.cycle, kernel_.work(p));
-    } else {
-      const bool kept = !filter_ || filter_->covers(p.y, p.x0, p.x0 + p.count, p.tri->id);
-      const bool traced = tracer_ && kept;
-      kernel_.set_capture(traced);
-      kernel_.process(p);
-      ++stats_.packets;
-      stats_.pixels += uint64_t(p.count);
-      p.cycle = schedule_.occupy(p.cycle, kernel_.work(p));
-      if (traced) record(p);
-      if (timeline_ && kept)
-        timeline_->add(track_, schedule_.last_start(), schedule_.last_busy(), uint32_t(p.count), p.tri->id);
+  [[gnu::noinline]] void work(tlm::tlm_generic_payload& trans, SpanPacket& p, sc_core::sc_time& delay) {
+    if constexpr (kTracing) {
+      traced_ = tracer_ && (!filter_ || filter_->covers(p.y, p.x0, p.x0 + p.count, p.tri->id)) &&
+                tracer_->region().covers(p.y, p.x0, p.x0 + p.count, p.tri->id);
+      if (tracer_) kernel_.set_capture(traced_);
     }
+    kernel_.process(p);
+    ++stats_.packets;
+    stats_.pixels += uint64_t(p.count);
+    if (line_) line_->set_work(slot_, kernel_.work(p));
+    worked_ = true;
     trans.set_response_status(tlm::TLM_OK_RESPONSE);
-    if (!packet_next_) return;
-    if (delay > sc_core::SC_ZERO_TIME) {  // now = arrival − delay: the new delay follows from the old
-      sc_core::sc_time later = delay + period_ * double(p.cycle - arrival);
-      packet_next_->b_transport(trans, later);
-    } else {
-      forward(packet_next_, trans, p.cycle, period_, sc_core::sc_time_stamp());
-    }
+    if (packet_next_) packet_next_->b_transport(trans, delay);
   }
 
   [[gnu::noinline]] void end_pass(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
     PassEnd& e = *reinterpret_cast<PassEnd*>(trans.get_data_ptr());
     if constexpr (has_end_pass<Kernel>::value) kernel_.end_pass(e);
-    pass_end(e);
+    if (line_) e.cycle = std::max(e.cycle, uint64_t(line_->end()));
     trans.set_response_status(tlm::TLM_OK_RESPONSE);
     if (next_) next_->b_transport(trans, delay);
   }
 
-  // Pixel i leaves at the packet's first result plus its share of the packet's busy
-  // cycles before it (exact where every pixel is the same work, e.g. II per light in
-  // lighting; spread evenly where it is not, e.g. the walker's steps through gaps).
-  void record(const SpanPacket& p) {
-    double values[16];
-    const uint64_t busy = schedule_.last_busy();
-    for (int i = 0; i < p.count; ++i) {
-      if (!tracer_->region().contains(p.x0 + i, p.y)) continue;
-      kernel_.trace(p, i, values);
-      tracer_->record(probe_, p.cycle + busy * uint64_t(i) / uint64_t(p.count), p.x0 + i, p.y, p.tri->id, values);
-    }
-  }
-
   Kernel& kernel_;
-  Schedule schedule_;
-  sc_core::sc_time period_;
+  Timing timing_;
+  PixelLine* line_ = nullptr;  // none in a testbench of the block alone: no timing
+  int slot_ = 0;
+  bool traced_ = false, worked_ = false;  // the packet now passing: traced, not bypassed
   BlockStats stats_;
+  BlockTimes no_times_;
   tlm::tlm_fw_transport_if<>* next_ = nullptr;         // the next block
   tlm::tlm_fw_transport_if<>* packet_next_ = nullptr;  // the same, unless this block ends its pass
 };

@@ -16,8 +16,13 @@ std::vector<core::SettingSpec> PipelineDecl::all_settings() const {
   std::vector<core::SettingSpec> all = settings;
   for (const auto& pass : passes)
     for (const auto& b : pass.blocks) {
-      all.push_back({b.name + ".latency", b.timing.latency, {}, 0, 1000000, "latency in cycles"});
+      all.push_back({b.name + ".latency", b.timing.latency, {}, 1, 1000000,
+                     "cycles from a pixel's start to its hand-over (docs/pipeline.md, Timing)"});
       all.push_back({b.name + ".ii", b.timing.ii, {}, 1, 1000000, "cycles per unit of work"});
+      if (b.fifo != BlockDecl::Fifo::None)
+        all.push_back({b.name + ".fifo_depth", b.timing.fifo_depth, {}, 1, 65536,
+                       b.fifo == BlockDecl::Fifo::Triangles ? "triangles its input FIFO holds"
+                                                             : "pixels its input FIFO holds"});
       if (b.formatted)
         all.push_back({b.name + ".format", "default", {}, 0, 0,
                        "number format of the block's datapath (default: pipeline.number_format)", true});

@@ -84,13 +84,16 @@ inline void SpanChain::operator()(SpanPacket& p) {
 
 struct BlockDecl {
   std::string name;                         // of its folder, settings, statistics, module
-  Timing timing;                            // defaults of <name>.latency and <name>.ii
+  Timing timing;                            // defaults of <name>.latency, .ii and .fifo_depth
   bool formatted = false;                   // has a <name>.format (a datapath in a number format)
   std::vector<core::SettingSpec> settings;  // its own, keys without "<name>."
   std::function<bool(const core::Scene&)> needed;  // empty: always elaborated
   // Builds the block, e.g. std::make_unique<SpanBlock<K>>(kernel arguments…): the
   // kernel is built in place (kernels may point into themselves).
   std::function<std::unique_ptr<Block>(const BlockContext&)> make;
+  // Its input FIFO (<name>.fifo_depth): of pixels, of triangles (the raster), or none
+  // (setup, the source; a frame pass).
+  enum class Fifo { None, Pixels, Triangles } fifo = Fifo::Pixels;
 };
 
 // A block of a kernel and the SystemC module built around it as

@@ -85,7 +85,6 @@ struct SpanPacket {
   int x0 = 0;         // first pixel of this packet
   int count = 0;      // visible pixels x0 … x0 + count − 1
   int row_start = 0;  // first covered pixel of the row (where the edge walker stands)
-  uint64_t cycle = 0; // timing model: when the packet reaches the current block
 
   float inv_w[kSpanMax];  // raster: 1/w
   float w[kSpanMax];      // raster: w, the eye-space depth
@@ -98,6 +97,14 @@ struct SpanPacket {
   float tex[3][kSpanMax]; // texture_fetch: colour texture
   float rgb[3][kSpanMax]; // lighting (texture-object: the ambient and diffuse factor D)
   float spec[3][kSpanMax]; // lighting, texture-object only: the specular term S (C = tex ⊙ D + S later)
+};
+
+// A block's work for each pixel of a packet, in units of its II (a kernel's work()):
+// uniform (`each`) or per pixel. 0: no work (bypassed).
+struct Work {
+  const uint16_t* per_pixel = nullptr;
+  uint32_t each = 0;
+  uint32_t at(int i) const { return per_pixel ? per_pixel[i] : each; }
 };
 
 class FramebufferKernel;

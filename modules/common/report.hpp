@@ -14,13 +14,17 @@
 
 namespace shadetlm::modules {
 
+// A block's timing (modules/common/timing.hpp).
 struct Timing {
-  uint64_t latency = 1;  // cycles from a packet's start to its first result downstream
-  uint64_t ii = 1;       // cycles per unit of work (initiation interval)
+  uint64_t latency = 1;     // cycles from a pixel's start to its hand-over, when nothing waits
+  uint64_t ii = 1;          // cycles per unit of work (initiation interval)
+  uint64_t fifo_depth = 8;  // pixels its input FIFO holds (triangles for the raster)
 };
 
 struct BlockStats {
   uint64_t packets = 0, pixels = 0, busy_cycles = 0, bypassed = 0;
+  uint64_t starved_cycles = 0, blocked_cycles = 0;  // waiting for input, for room downstream
+  uint64_t fifo_cycles = 0, fifo_peak = 0;          // Σ pixel-cycles in its input FIFO; the most it held
   Ops ops;
 };
 
@@ -28,7 +32,7 @@ struct BlockReport {
   std::string name;
   BlockStats stats;
   Timing timing;
-  uint64_t free_cycle = 0;  // when it finished its last work
+  int64_t last_cycle = -1;  // when it handed on its last result
   std::vector<uint64_t> busy_per_bin;  // busy cycles per Inspect::bin_cycles
   Ranges ranges;                       // of the block's datapaths (docs/pipeline.md)
   nlohmann::json details;              // block-specific figures (texel_project)
@@ -46,6 +50,7 @@ struct RenderResult {
   std::vector<BlockReport> blocks;  // elaborated blocks, in pipeline order
   uint64_t bin_cycles = 0;          // of the blocks' busy_per_bin (0: none)
   uint64_t trace_records = 0;       // pixels written to the VCD, all blocks
+  std::string timing_log;           // Inspect::timing_log: the main pass's times (modules/common/timing.hpp)
   double precompute_s = 0;          // maps built when the pipeline was (not in wall_s)
   uint64_t nonfinite_replaced = 0;   // NaN or infinite colour, normal, depth or specular values that reached the framebuffer (replaced)
 

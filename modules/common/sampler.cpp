@@ -228,7 +228,8 @@ void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx
 namespace shadetlm::modules {
 
 void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map, Sampler& sampler,
-                 float out[3][kSpanMax], Ops& ops, ValueRange& uv_range, float (*uv_lod)[kSpanMax]) {
+                 float out[3][kSpanMax], Ops& ops, ValueRange& uv_range, uint16_t cycles[kSpanMax],
+                 float (*uv_lod)[kSpanMax]) {
   const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
   float u_w = t.uv[0].at(dx, dy), v_w = t.uv[1].at(dx, dy);
   uv_range.add_span(u_w, t.uv[0].ax, p.count, p.w);
@@ -240,7 +241,9 @@ void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map,
     const float dudy = (t.uv[0].ay - u * t.inv_w.ay) * w, dvdy = (t.uv[1].ay - v * t.inv_w.ay) * w;
     u_w += t.uv[0].ax, v_w += t.uv[1].ax;
     float value[3];
+    const uint64_t before = sampler.cycles();
     sampler.sample(map, u, v, dudx, dvdx, dudy, dvdy, value, ops);
+    cycles[i] = uint16_t(std::min<uint64_t>(sampler.cycles() - before, 65535));
     for (int c = 0; c < 3; ++c) out[c][i] = value[c];
     if (uv_lod) uv_lod[0][i] = u, uv_lod[1][i] = v, uv_lod[2][i] = sampler.last_lod();
   }

@@ -80,8 +80,10 @@ class Sampler {
 // its derivatives along x and y, ((∂(u/w) − u ∂(1/w)) · w), and the filtered value into
 // out[0..2][i]. `lod` (if not null) receives each pixel's LOD. Shared by the bump fetch
 // and the colour texture's fetch.
+// `cycles` receives each pixel's cycles in the texture unit.
 void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map, Sampler& sampler,
-                 float out[3][kSpanMax], Ops& ops, ValueRange& uv_range, float (*uv_lod)[kSpanMax] = nullptr);
+                 float out[3][kSpanMax], Ops& ops, ValueRange& uv_range, uint16_t cycles[kSpanMax],
+                 float (*uv_lod)[kSpanMax] = nullptr);
 // Per pixel outside the filter: uv (2 mul, 2 add) and its four derivatives (2 mul, 1 add
 // each); per span, two plane seeds.
 constexpr Ops kOpsSpanUvPerPixel{/*add*/ 6, /*mul*/ 10};

@@ -20,7 +20,7 @@ class FramebufferKernel {
 
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
-  uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }
+  Work work(const SpanPacket&) const { return {nullptr, 1}; }  // a pixel a cycle
   bool bypass(const SpanPacket&) const { return false; }
   // Waveforms: what is written.
   void set_capture(bool) {}

@@ -36,7 +36,7 @@ class NormalInterpKernel {
   const Ops& ops() const { return ops_; }
   uint64_t steps() const { return steps_; }  // increments added, all kinds
   // Work of the last packet: one step per pixel, hidden pixels and row changes included.
-  uint64_t work(const SpanPacket&) const { return last_steps_; }
+  Work work(const SpanPacket&) const { return {work_, 0}; }  // a step a cycle
   // Fetched-normal bump paths replace the interpolated normal (the paper's multiplexer
   // would discard it): their packets do not walk.
   bool bypass(const SpanPacket& p) const { return core::fetches_normal(p.tri->material->path); }
@@ -59,6 +59,7 @@ class NormalInterpKernel {
   int x_ = 0;                   // the walker's position along the row
   double n_[3] = {0, 0, 0};     // the normal there
   uint64_t steps_ = 0, last_steps_ = 0;
+  uint16_t work_[kSpanMax];
   Ops ops_;
   NumberContext numbers_;
   bool checks_;  // counts its non-finite outputs (checks_outputs: adders only)

@@ -146,7 +146,7 @@ class NormalizeKernel {
   void process(SpanPacket& p);
   Ops ops() const;
   NormalizeMode mode() const { return mode_; }
-  uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }
+  Work work(const SpanPacket&) const { return {nullptr, 1}; }  // a pixel a cycle
   bool bypass(const SpanPacket&) const { return false; }
   NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
   // Waveforms: the radicand |N|² of the incoming normal (kept only for traced

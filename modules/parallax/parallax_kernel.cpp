@@ -321,12 +321,12 @@ void ParallaxKernel::process(SpanPacket& p) {
     p.uvp[1][i] = moved ? v - (r.y - y0) / H : v;
     p.iterations[i] = float(r.iterations);
     iterations += uint64_t(r.iterations);
+    work_[i] = uint16_t(std::clamp(r.iterations, 1, 65535));
   }
   ops_ += Ops{/*add*/ 5, /*mul*/ 5} * uint64_t(p.count);  // uv and the tangent-space eye vector, per pixel
   if (p.count > 0) ops_ += Ops{/*add*/ 10, /*mul*/ 10};   // five plane seeds
   nonfinite_ += count_nonfinite(p.uvp, p.count);
   iterations_ += iterations;
-  last_iterations_ = iterations;  // one iteration a cycle
 }
 
 }  // namespace shadetlm::modules

@@ -64,7 +64,7 @@ class ParallaxKernel {
 
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
-  uint64_t work(const SpanPacket& p) const { return last_iterations_ > 0 ? last_iterations_ : uint64_t(p.count); }
+  Work work(const SpanPacket&) const { return {work_, 0}; }  // an iteration a cycle (at least one)
   bool bypass(const SpanPacket& p) const { return p.tri->material->path != core::ShadingPath::Parallax; }
 
   double precompute_seconds() const { return precompute_s_; }
@@ -82,7 +82,8 @@ class ParallaxKernel {
  private:
   const core::Scene& scene_;
   std::vector<std::unique_ptr<ParallaxMaps>> maps_;  // by material index
-  uint64_t iterations_ = 0, last_iterations_ = 0;
+  uint64_t iterations_ = 0;
+  uint16_t work_[kSpanMax];
   NumberContext numbers_;
   uint64_t nonfinite_ = 0;
   double precompute_s_ = 0;

@@ -65,7 +65,8 @@ Pipeline::Pipeline(const core::Scene& scene, const PipelineDecl& declaration)
   for (const auto& pass : declaration.passes)
     for (const auto& b : pass.blocks) {
       if (!all && b.needed && !b.needed(scene)) continue;
-      const Timing timing{uint64_t(settings_.integer(b.name + ".latency")), uint64_t(settings_.integer(b.name + ".ii"))};
+      Timing timing{uint64_t(settings_.integer(b.name + ".latency")), uint64_t(settings_.integer(b.name + ".ii")), 0};
+      if (b.fifo != BlockDecl::Fifo::None) timing.fifo_depth = uint64_t(settings_.integer(b.name + ".fifo_depth"));
       blocks_.push_back({b.name, timing, b.make(BlockContext{scene, settings_, b.name})});
     }
   check_shape(blocks_);
@@ -87,6 +88,17 @@ class Top : public sc_core::sc_module {
       modules_[i]->bind_output(*modules_[i + 1]->input());
       if (pipeline.blocks()[i + 1].block->kind() == Block::Kind::Frame) modules_[i]->set_last_of_pass();
     }
+    // The main pass's timing: the raster and the span blocks after it, in order.
+    std::vector<Timing> line;
+    for (size_t i = 1; i < modules_.size() && pipeline.blocks()[i].block->kind() != Block::Kind::Frame; ++i)
+      line.push_back(pipeline.blocks()[i].timing);
+    line_ = std::make_unique<PixelLine>(line);
+    if (inspect.timing_log) {
+      log_ = std::make_unique<TimingLog>();
+      line_->set_log(log_.get());
+      for (size_t i = 0; i <= line.size(); ++i) log_->block(pipeline.blocks()[i].name, pipeline.blocks()[i].timing);
+    }
+    for (size_t i = 0; i <= line.size(); ++i) modules_[i]->join_line(line_.get(), int(i) - 1);
 
     const core::Camera& camera = pipeline.scene().camera;
     region_ = inspect.region;
@@ -98,9 +110,12 @@ class Top : public sc_core::sc_module {
       const auto names = pipeline.blocks()[i].block->trace_names();
       const int probe = tracer_ && !names.empty() ? tracer_->add_probe(pipeline.blocks()[i].name, names) : -1;
       modules_[i]->attach(tracer_.get(), probe, timeline, uint32_t(i), filter);
-      modules_[i]->schedule().keep_histogram(inspect.bin_cycles);
+      modules_[i]->keep_histogram(inspect.bin_cycles);
+      if (kTracing && (tracer_ || timeline) && i >= 1 && i <= line.size()) line_->watch(modules_[i].get());
     }
   }
+  const PixelLine& line() const { return *line_; }
+  TimingLog* log() const { return log_.get(); }
   const std::vector<std::unique_ptr<BlockInfo>>& modules() const { return modules_; }
   const Tracer* tracer() const { return tracer_.get(); }
   const Timeline& timeline_slices() const { return timeline_; }
@@ -116,6 +131,8 @@ class Top : public sc_core::sc_module {
   TraceRegion region_;
   std::unique_ptr<Tracer> tracer_;
   Timeline timeline_;
+  std::unique_ptr<PixelLine> line_;
+  std::unique_ptr<TimingLog> log_;
 };
 
 }  // namespace
@@ -179,16 +196,23 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
     BlockReport report;
     report.name = m.block_name();
     report.stats = m.stats();
-    report.timing = m.schedule().timing();
-    report.free_cycle = m.schedule().free_cycle();
-    report.busy_per_bin = m.schedule().busy_per_bin();
-    r.frame_cycles = std::max(r.frame_cycles, report.free_cycle + report.timing.latency);
+    report.timing = m.timing();
+    report.last_cycle = m.times().last;
+    report.busy_per_bin = m.times().busy_per_bin;
+    r.frame_cycles = std::max(r.frame_cycles, uint64_t(report.last_cycle + 1));
     // Every packet the raster puts out reaches the end of the chain.
     if (pipeline.blocks()[i].block->kind() == Block::Kind::Raster) r.pixels_shaded = report.stats.pixels;
     pipeline.blocks()[i].block->finish(report, r);
     r.blocks.push_back(std::move(report));
   }
+  r.frame_cycles = std::max(r.frame_cycles, uint64_t(top.line().end()));
   r.bin_cycles = inspect.bin_cycles;
+  if (TimingLog* log = top.log()) {  // the main pass: setup and the line
+    const auto& m = top.modules();
+    log->end(std::max(top.line().end(), m[0]->times().last + 1));
+    for (size_t i = 0; i <= top.line().size(); ++i) log->stats(m[i]->block_name(), m[i]->times());
+    r.timing_log = log->text();
+  }
   if (top.tracer() && std::filesystem::exists(inspect.vcd)) {
     r.trace_records = top.tracer()->records();
     const double ps = 1e6 / clock_mhz;

@@ -58,6 +58,7 @@ struct Inspect {
   TraceRegion region;         // pixels and triangles traced; also limits the timeline
   bool region_given = false;  // else the whole frame is traced
   std::string timeline;       // Chrome trace-event JSON
+  bool timing_log = false;    // keep every pixel's times at every block (RenderResult::timing_log)
   uint64_t bin_cycles = 0;      // utilization histogram bin (0: not kept; it costs a little per packet)
   std::function<void(double)> progress;  // share of the triangles set up, now and then (a progress bar)
 };

@@ -3,7 +3,7 @@
 namespace shadetlm::modules {
 
 Raster::Raster(sc_core::sc_module_name name, RasterKernel& kernel, Timing timing, sc_core::sc_time period)
-    : sc_core::sc_module(name), in("in"), out("out"), kernel_(kernel), schedule_(timing), period_(period) {
+    : sc_core::sc_module(name), in("in"), out("out"), kernel_(kernel), timing_(timing), period_(period) {
   in.register_b_transport(this, &Raster::b_transport);
   span_.set_command(tlm::TLM_WRITE_COMMAND);
 }
@@ -11,45 +11,52 @@ Raster::Raster(sc_core::sc_module_name name, RasterKernel& kernel, Timing timing
 BlockStats Raster::stats() const {
   BlockStats s = stats_;
   s.ops = kernel_.ops();
-  s.busy_cycles = schedule_.busy_cycles();
+  const BlockTimes& t = times();
+  s.busy_cycles = t.busy, s.starved_cycles = t.starved, s.blocked_cycles = t.blocked;
   return s;
 }
 
 void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
   if (is_pass_end(trans)) {
-    pass_end(*reinterpret_cast<PassEnd*>(trans.get_data_ptr()));
+    PassEnd& e = *reinterpret_cast<PassEnd*>(trans.get_data_ptr());
+    if (line_) e.cycle = std::max(e.cycle, uint64_t(line_->end()));
     return out->b_transport(trans, delay);
   }
   const TriangleSetup& t = *reinterpret_cast<const TriangleSetup*>(trans.get_data_ptr());
   const sc_core::sc_time now = sc_core::sc_time_stamp();  // the same for every packet of the triangle
-  const uint64_t arrival = uint64_t((now + delay) / period_ + 0.5);
+  const int64_t arrival = int64_t((now + delay) / period_ + 0.5);
+  const int64_t taken = line_ ? line_->start_triangle(arrival) : arrival;
+  TimingLog* log = line_ ? line_->log() : nullptr;
+  if (log) log->taken(taken);
+  // The packets leave with the cycle the raster took the triangle; their pixels' times
+  // follow from the sweep once the chain is done with them.
+  const sc_core::sc_time sent = period_ * double(taken) - now;
   const uint64_t walked_before = kernel_.pixels_walked();
-  const uint64_t start = std::max(arrival, schedule_.free_cycle());
+  uint64_t timed_steps = 0;  // of the triangle's walk, up to the last pixel timed
   kernel_.run(t, [&](SpanPacket& p) {
-    // It leaves `latency` after the walk has passed its last pixel.
-    const uint64_t walked = kernel_.row_walked_before() - walked_before + uint64_t(p.x0 + p.count - p.row_start);
-    p.cycle = start + schedule_.timing().ii * walked + schedule_.timing().latency;
     ++stats_.packets;
     stats_.pixels += uint64_t(p.count);
-    if (kTracing && tracer_ && tracer_->region().covers(p.y, p.x0, p.x0 + p.count, t.id))
-      for (int i = 0; i < p.count; ++i)
-        if (tracer_->region().contains(p.x0 + i, p.y)) {
-          const double values[2] = {p.inv_w[i], p.w[i]};
-          // Pixel i leaves II per pixel walked after the packet's first.
-          tracer_->record(probe_, p.cycle - schedule_.timing().ii * uint64_t(p.count - 1 - i), p.x0 + i, p.y,
-                          t.id, values);
-        }
     span_.set_data_ptr(reinterpret_cast<unsigned char*>(&p));
     span_.set_data_length(sizeof(SpanPacket));
     span_.set_address(uint64_t(p.y) << 32 | uint32_t(p.x0));
-    forward(out, span_, p.cycle, period_, now);
+    sc_core::sc_time d = sent;
+    out->b_transport(span_, d);
+    // The walk's steps before the packet's first pixel, hidden ones included.
+    const uint64_t first = kernel_.row_walked_before() - walked_before + uint64_t(p.x0 - p.row_start);
+    if (line_) line_->sweep(p, first - timed_steps);
+    timed_steps = first + uint64_t(p.count);
   });
-  schedule_.occupy(arrival, kernel_.pixels_walked() - walked_before);
-  // Setup and raster work per triangle: their tracks keep the triangles of the filter.
-  if (kTracing && timeline_ && triangle_kept(t.id))
-    timeline_->add(track_, schedule_.last_start(), schedule_.last_busy(),
-                   uint32_t(kernel_.pixels_walked() - walked_before), t.id);
+  const uint64_t trailing = kernel_.pixels_walked() - walked_before - timed_steps;
+  if (line_) line_->walk_hidden(trailing);
+  if (log) log->trailing(trailing);
+  // Setup's back-pressure: the transaction returns the cycle the raster took it.
+  delay = period_ * double(taken) - now;
   trans.set_response_status(tlm::TLM_OK_RESPONSE);
+}
+
+void Raster::timed(const SpanPacket& p) {
+  if (!kTracing || p.count == 0) return;
+  record_timed(p, *line_, 0, [&](int i, double* v) { v[0] = p.inv_w[i], v[1] = p.w[i]; });
 }
 
 }  // namespace shadetlm::modules

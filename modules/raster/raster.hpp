@@ -1,6 +1,8 @@
 #pragma once
-// The raster block: triangles in, span packets out (RasterKernel). Busy one II per
-// pixel walked, hidden ones included; a packet leaves when the walk has reached it.
+// The raster block: triangles in, span packets out (RasterKernel). It walks one pixel a
+// II, hidden ones included, and holds the main pass's timing: each packet, once back
+// from the chain, is timed in the PixelLine (modules/common/timing.hpp), and the
+// triangle's transaction returns the cycle the raster took it (setup's back-pressure).
 #include "shadetlm/modules/common/block.hpp"
 #include "shadetlm/modules/raster/raster_kernel.hpp"
 
@@ -15,10 +17,15 @@ class Raster : public sc_core::sc_module, public BlockInfo {
 
   std::string block_name() const override { return basename(); }
   BlockStats stats() const override;
-  const Schedule& schedule() const override { return schedule_; }
-  Schedule& schedule() override { return schedule_; }
+  const Timing& timing() const override { return timing_; }
+  const BlockTimes& times() const override { return line_ ? line_->times(0) : no_times_; }
+  void join_line(PixelLine* line, int) override { line_ = line; }
+  void keep_histogram(uint64_t cycles) override {
+    if (line_) line_->times(0).bin_cycles = cycles;
+  }
   tlm::tlm_target_socket<32>* input() override { return &in; }
   void bind_output(tlm::tlm_target_socket<32>& next) override { out.bind(next); }
+  void timed(const SpanPacket& p) override;
   // Waveforms: 1/w and w of each visible pixel.
   static std::vector<std::string> trace_names() { return {"inv_w", "w"}; }
 
@@ -26,8 +33,10 @@ class Raster : public sc_core::sc_module, public BlockInfo {
   void b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay);
 
   RasterKernel& kernel_;
-  Schedule schedule_;
+  Timing timing_;
   sc_core::sc_time period_;
+  PixelLine* line_ = nullptr;
+  BlockTimes no_times_;
   BlockStats stats_;
   tlm::tlm_generic_payload span_;
 };

@@ -19,9 +19,11 @@ class RasterBlock : public KernelBlock<RasterKernel, Raster> {
 }  // namespace
 
 BlockDecl raster_block() {
-  return {"raster", {4, 1}, false, {}, {}, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
-            return std::make_unique<RasterBlock>(ctx.scene.camera.width, ctx.scene.camera.height);
-          }};
+  BlockDecl d{"raster", {4, 1, 4}, false, {}, {}, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
+                return std::make_unique<RasterBlock>(ctx.scene.camera.width, ctx.scene.camera.height);
+              }};
+  d.fifo = BlockDecl::Fifo::Triangles;
+  return d;
 }
 
 }  // namespace shadetlm::modules

@@ -3,14 +3,23 @@
 namespace shadetlm::modules {
 
 Setup::Setup(sc_core::sc_module_name name, SetupKernel& kernel, Timing timing, sc_core::sc_time period)
-    : sc_core::sc_module(name), out("out"), kernel_(kernel), schedule_(timing), period_(period) {
+    : sc_core::sc_module(name), out("out"), kernel_(kernel), timing_(timing),
+      line_(timing, Timing{}.fifo_depth), period_(period) {
   SC_THREAD(run);
+}
+
+void Setup::join_line(PixelLine* line, int) {
+  const uint64_t bins = line_.times().bin_cycles;
+  line_ = TriangleLine(timing_, line->timing(0).fifo_depth);  // the raster's triangle FIFO
+  line_.times().bin_cycles = bins;
+  log_ = line->log();
 }
 
 BlockStats Setup::stats() const {
   BlockStats s = stats_;
   s.ops = kernel_.ops();
-  s.busy_cycles = schedule_.busy_cycles();
+  s.busy_cycles = line_.times().busy;
+  s.blocked_cycles = line_.times().blocked;
   return s;
 }
 
@@ -18,29 +27,30 @@ void Setup::run() {
   quantum_.reset();
   tlm::tlm_generic_payload trans;
   trans.set_command(tlm::TLM_WRITE_COMMAND);
-  uint64_t local_cycle = 0;
   kernel_.run([&](const TriangleSetup& t) {
-    const uint64_t arrival = schedule_.occupy(local_cycle, 1);  // one triangle
+    const int64_t handed = line_.next();
     ++stats_.packets;
     if (kTracing && timeline_ && triangle_kept(t.id))
-      timeline_->add(track_, schedule_.last_start(), schedule_.last_busy(), 0, t.id);
+      timeline_->add(track_, uint64_t(line_.last_start()), timing_.ii, 0, t.id);
+    if (log_) log_->triangle(t.id, line_.last_start(), handed);
     trans.set_data_ptr(reinterpret_cast<unsigned char*>(const_cast<TriangleSetup*>(&t)));
     trans.set_data_length(sizeof(TriangleSetup));
     trans.set_address(t.id);
-    // The triangle reaches the raster at `arrival`: the raster reads it from there.
-    // Never negative: the quantum keeper syncs to period·local_cycle ≤ period·arrival.
-    const sc_core::sc_time at = period_ * double(arrival);
-    sc_assert(at >= sc_core::sc_time_stamp());
-    sc_core::sc_time delay = at - sc_core::sc_time_stamp();
+    // The triangle reaches the raster at `handed`; the raster returns the cycle it took
+    // it. Never negative: the quantum keeper syncs to a cycle before `handed`.
+    const sc_core::sc_time now = sc_core::sc_time_stamp();
+    const sc_core::sc_time at = period_ * double(handed);
+    sc_assert(at >= now);
+    sc_core::sc_time delay = at - now;
     out->b_transport(trans, delay);
-    local_cycle = schedule_.free_cycle();
-    quantum_.set(period_ * double(local_cycle) - sc_core::sc_time_stamp());
+    line_.taken(int64_t((now + delay) / period_ + 0.5));
+    quantum_.set(period_ * double(line_.last_start() + int64_t(timing_.ii)) - now);
     if (quantum_.need_sync()) quantum_.sync();
   });
   quantum_.sync();
   // Every transaction is a blocking call: the blocks downstream are done with the frame.
   PassEnd end;
-  pass_end(end);
+  end.cycle = uint64_t(line_.times().last + 1);
   trans.set_command(tlm::TLM_IGNORE_COMMAND);
   trans.set_data_ptr(reinterpret_cast<unsigned char*>(&end));
   trans.set_data_length(sizeof(PassEnd));

@@ -13,7 +13,7 @@ BlockStats TexelProject::stats() const {
   s.packets = kernel_.polygons();
   s.pixels = kernel_.covered();
   s.ops = kernel_.ops();
-  s.busy_cycles = schedule_.busy_cycles();
+  s.busy_cycles = schedule_.times().busy;
   return s;
 }
 
@@ -25,7 +25,7 @@ void TexelProject::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time
     kernel_.run(*e.framebuffer);
     schedule_.occupy(e.cycle, kernel_.cycles());
   }
-  pass_end(e);
+  e.cycle = std::max(e.cycle, uint64_t(schedule_.times().last + 1));
   if (out.size() > 0) out->b_transport(trans, delay);
 }
 

@@ -17,8 +17,9 @@ class TexelProject : public sc_core::sc_module, public BlockInfo, public PacketT
 
   std::string block_name() const override { return basename(); }
   BlockStats stats() const override;
-  const Schedule& schedule() const override { return schedule_; }
-  Schedule& schedule() override { return schedule_; }
+  const Timing& timing() const override { return schedule_.timing(); }
+  const BlockTimes& times() const override { return schedule_.times(); }
+  void keep_histogram(uint64_t cycles) override { schedule_.times().bin_cycles = cycles; }
   tlm::tlm_target_socket<32>* input() override { return &in; }
   void bind_output(tlm::tlm_target_socket<32>& next) override { out.bind(next); }
 

@@ -21,10 +21,12 @@ class TexelProjectBlock : public KernelBlock<TexelProjectKernel, TexelProject> {
 }  // namespace
 
 BlockDecl texel_project_block() {
-  return {"texel_project", {16, 1}, true, {{"units", 4, {}, 1, 64, "parallel splat units of texel_project"}},
-          TexelProjectKernel::needed, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
-            return std::make_unique<TexelProjectBlock>(ctx.scene, ctx.integer("units"), ctx.format());
-          }};
+  BlockDecl d{"texel_project", {16, 1}, true, {{"units", 4, {}, 1, 64, "parallel splat units of texel_project"}},
+              TexelProjectKernel::needed, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
+                return std::make_unique<TexelProjectBlock>(ctx.scene, ctx.integer("units"), ctx.format());
+              }};
+  d.fifo = BlockDecl::Fifo::None;  // a pass of its own over the frame
+  return d;
 }
 
 }  // namespace shadetlm::modules

@@ -31,10 +31,8 @@ TextureFetchKernel::TextureFetchKernel(const core::Scene& scene, const Options& 
 }
 
 void TextureFetchKernel::process_filtered(SpanPacket& p) {
-  const uint64_t cycles_before = sampler_.cycles();
-  sample_span(*p.tri, p, maps_[size_t(p.tri->material->texture)], sampler_, p.tex, ops_, uv_range_,
+  sample_span(*p.tri, p, maps_[size_t(p.tri->material->texture)], sampler_, p.tex, ops_, uv_range_, work_,
               capture_ ? captured_ : nullptr);
-  last_cycles_ = sampler_.cycles() - cycles_before;
   lod_computations_ += uint64_t(p.count);
   if (capture_)  // u, v, LOD from sample_span; no single texel address
     for (int i = 0; i < p.count; ++i) captured_[4][i] = captured_[2][i], captured_[2][i] = captured_[3][i] = -1;
@@ -42,7 +40,7 @@ void TextureFetchKernel::process_filtered(SpanPacket& p) {
 
 void TextureFetchKernel::fetch(SpanPacket& p) {
   if (p.tri->material->path == core::ShadingPath::TextureScreen) return process_filtered(p);
-  last_cycles_ = 0;
+  std::fill(work_, work_ + p.count, uint16_t(1));
   const TriangleSetup& t = *p.tri;
   const core::Texture& tex = scene_.textures[t.material->texture];
   const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;

@@ -30,7 +30,7 @@ class TextureFetchKernel {
   // float32 datapaths; the non-finite values among the block's outputs.
   NumberStats numbers() const { return {"float32", nonfinite_, {}}; }
   const Ops& ops() const { return ops_; }
-  uint64_t work(const SpanPacket& p) const { return last_cycles_ > 0 ? last_cycles_ : uint64_t(p.count); }
+  Work work(const SpanPacket&) const { return {work_, 0}; }  // four texels a cycle, at least one
   bool bypass(const SpanPacket& p) const {
     return p.tri->material->texture < 0 || p.tri->material->path == core::ShadingPath::TextureObject;
   }
@@ -61,7 +61,8 @@ class TextureFetchKernel {
   Sampler sampler_;
   std::vector<std::vector<core::Texture>> levels_;  // mip levels 1 … by texture index (texture-screen)
   std::vector<MipMap> maps_;                        // by texture index
-  uint64_t last_cycles_ = 0, lod_computations_ = 0;
+  uint64_t lod_computations_ = 0;
+  uint16_t work_[kSpanMax];
   ValueRange uv_range_;
   Ops ops_;
   bool capture_ = false;

@@ -32,7 +32,7 @@ class VectorInterpKernel {
 
   void process(SpanPacket& p);
   Ops ops() const;
-  uint64_t work(const SpanPacket& p) const { return uint64_t(p.count); }  // pixels
+  Work work(const SpanPacket&) const { return {nullptr, 1}; }  // a pixel a cycle
   bool bypass(const SpanPacket& p) const { return !world_ && !core::fetches_normal(p.tri->material->path); }
   Ranges ranges() const { return {{"l", l_range_}, {"h", h_range_}}; }
   NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }

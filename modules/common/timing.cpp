@@ -1,0 +1,164 @@
+#include "shadetlm/modules/common/timing.hpp"
+
+
+namespace shadetlm::modules {
+
+void BlockTimes::histogram(uint64_t start, uint64_t cycles) {
+  for (uint64_t t = start, end = start + cycles; t < end;) {
+    const uint64_t bin = t / bin_cycles, bin_end = (bin + 1) * bin_cycles;
+    if (busy_per_bin.size() <= bin) busy_per_bin.resize(bin + 1, 0);
+    const uint64_t until = std::min(end, bin_end);
+    busy_per_bin[bin] += until - t;
+    t = until;
+  }
+}
+
+namespace {
+// The smallest power of two above n.
+uint64_t ring_above(uint64_t n) {
+  uint64_t r = 1;
+  while (r <= n) r *= 2;
+  return r;
+}
+}  // namespace
+
+PixelLine::PixelLine(std::vector<Timing> blocks) {
+  uint64_t reach = 1;  // the furthest back a term looks, in pixels
+  for (size_t j = 0; j < blocks.size(); ++j) {
+    Slot s;
+    s.timing = blocks[j];
+    s.capacity = int64_t(capacity(blocks[j]));
+    s.next_depth = j + 1 < blocks.size() ? int64_t(blocks[j + 1].fifo_depth) : 0;
+    reach = std::max({reach, uint64_t(s.capacity), uint64_t(s.next_depth), blocks[j].fifo_depth});
+    blocks_.push_back(s);
+  }
+  ring_size_ = ring_above(reach);
+  ring_mask_ = ring_size_ - 1;
+  // −1: a pixel before the first, handed on and started "before cycle 0".
+  ring_.assign(blocks_.size() * 2 * ring_size_, -1);
+  times_.assign(blocks_.size(), std::vector<Times>(64));
+}
+
+int64_t PixelLine::start_triangle(int64_t arrival) {
+  Slot& r = blocks_[0];
+  // In the raster's FIFO from the cycle after setup handed it on; one taken a cycle.
+  const int64_t taken = std::max({arrival + 1, r.free, triangle_start_ + 1});
+  r.t.starved += uint64_t(taken - r.free);
+  r.free = taken;
+  triangle_start_ = taken;
+  return taken;
+}
+
+void PixelLine::walk_hidden(uint64_t steps) {
+  Slot& r = blocks_[0];
+  const uint64_t cycles = r.timing.ii * steps;
+  r.t.add_busy(r.free, cycles);
+  r.free += int64_t(cycles);
+}
+
+void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before) {
+  const int count = p.count;
+  walk_hidden(hidden_before);
+  if (keep_times && times_[0].size() < size_t(count))
+    for (auto& t : times_) t.resize(size_t(count));
+  const size_t blocks = blocks_.size();
+  for (int i = 0; i < count; ++i, ++n_) {
+    int64_t arrived = 0;  // d_{j−1}(n) + 1, for j > 0
+    for (size_t j = 0; j < blocks; ++j) {
+      Slot& b = blocks_[j];
+      const int64_t room = ring_d(j, n_ - uint64_t(b.capacity)) + 1;  // a register free
+      int64_t s, f, o;
+      if (j == 0) {  // the raster: the walk has reached the pixel (a step of its own)
+        s = std::max(b.free, room);
+        b.t.blocked += uint64_t(s - b.free);
+        o = int64_t(b.timing.ii);
+        f = s + int64_t(b.timing.latency);
+      } else {
+        s = std::max({arrived, b.free, room});
+        // Waiting while every register is full is blocked; the rest, starved.
+        const int64_t blocked_until = std::min(std::max(room, b.free), s);
+        b.t.blocked += uint64_t(blocked_until - b.free);
+        b.t.starved += uint64_t(s - blocked_until);
+        // FIFO occupancy: it held the pixel from the end of cycle d_{j−1}(n) to s.
+        b.t.fifo_cycles += uint64_t(s - arrived + 1);
+        while (ring_s(j, uint64_t(b.head)) < arrived && b.head < int64_t(n_)) ++b.head;
+        b.t.fifo_peak = std::max(b.t.fifo_peak, n_ + 1 - uint64_t(b.head));
+        const uint32_t w = b.work.at(i);
+        o = w > 0 ? int64_t(b.timing.ii * w) : 1;
+        f = w > 0 ? s + int64_t(b.timing.ii * (w - 1) + b.timing.latency) : s + 1;
+      }
+      b.t.add_busy(s, uint64_t(o));
+      b.free = s + o;
+      int64_t d = std::max(f, b.t.last + 1);
+      if (b.next_depth > 0) d = std::max(d, ring_s(j + 1, n_ - uint64_t(b.next_depth)) + 1);
+      ring_s(j, n_) = s;
+      ring_d(j, n_) = d;
+      b.t.last = d;
+      if (keep_times) times_[j][size_t(i)] = {s, d};
+      arrived = d + 1;
+    }
+  }
+  if (log_) log_->pixels(p, hidden_before, *this);
+  for (TimedObserver* o : observers_) o->timed(p);
+}
+
+int64_t PixelLine::end() const {
+  int64_t end = blocks_.empty() ? 0 : blocks_[0].free;  // the raster's walk
+  for (const Slot& b : blocks_) end = std::max(end, b.t.last + 1);
+  return end;
+}
+
+TriangleLine::TriangleLine(Timing setup, uint64_t raster_depth)
+    : timing_(setup), capacity_(int64_t(capacity(setup))), depth_(int64_t(raster_depth)) {
+  const uint64_t size = ring_above(std::max<uint64_t>(uint64_t(capacity_), raster_depth));
+  handed_.assign(size, -1);
+  taken_.assign(size, -1);
+  mask_ = size - 1;
+}
+
+int64_t TriangleLine::next() {
+  const int64_t room = handed_[(k_ - uint64_t(capacity_)) & mask_] + 1;
+  const int64_t s = std::max(free_, room);
+  t_.blocked += uint64_t(s - free_);
+  t_.add_busy(s, timing_.ii);
+  free_ = s + int64_t(timing_.ii);
+  const int64_t fifo_room = taken_[(k_ - uint64_t(depth_)) & mask_] + 1;
+  const int64_t d = std::max({s + int64_t(timing_.latency), last_d_ + 1, fifo_room});
+  handed_[k_ & mask_] = d;
+  last_start_ = s;
+  last_d_ = d;
+  t_.last = d;
+  return d;
+}
+
+void TriangleLine::taken(int64_t cycle) {
+  taken_[k_ & mask_] = cycle;
+  ++k_;
+}
+
+void TimingLog::block(const std::string& name, const Timing& t) {
+  text_ += "block " + name + " " + std::to_string(t.latency) + " " + std::to_string(t.ii) + " " +
+           std::to_string(t.fifo_depth) + "\n";
+}
+void TimingLog::triangle(uint32_t id, int64_t start, int64_t handed) {
+  text_ += "t " + std::to_string(id) + " " + std::to_string(start) + " " + std::to_string(handed) + "\n";
+}
+void TimingLog::taken(int64_t cycle) { text_ += "r " + std::to_string(cycle) + "\n"; }
+void TimingLog::trailing(uint64_t steps) { text_ += "e " + std::to_string(steps) + "\n"; }
+void TimingLog::end(int64_t cycle) { text_ += "end " + std::to_string(cycle) + "\n"; }
+void TimingLog::stats(const std::string& name, const BlockTimes& t) {
+  text_ += "stats " + name + " " + std::to_string(t.busy) + " " + std::to_string(t.starved) + " " +
+           std::to_string(t.blocked) + " " + std::to_string(t.fifo_cycles) + " " + std::to_string(t.fifo_peak) + "\n";
+}
+void TimingLog::pixels(const SpanPacket& p, uint64_t hidden, const PixelLine& line) {
+  for (int i = 0; i < p.count; ++i) {
+    text_ += "p " + std::to_string(p.x0 + i) + " " + std::to_string(p.y) + " " +
+             std::to_string(i == 0 ? hidden : 0);
+    for (size_t j = 1; j < line.size(); ++j) text_ += " " + std::to_string(line.work(int(j)).at(i));
+    for (size_t j = 0; j < line.size(); ++j)
+      text_ += " " + std::to_string(line.start(int(j), i)) + " " + std::to_string(line.handed(int(j), i));
+    text_ += "\n";
+  }
+}
+
+}  // namespace shadetlm::modules

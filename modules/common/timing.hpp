@@ -1,0 +1,179 @@
+#pragma once
+// The fast timing model (docs/pipeline.md, "Timing"): every pixel's start and hand-over
+// cycle at every block of the main pass, with bounded FIFOs and back-pressure, computed
+// per packet in one pixel-major sweep once every block has seen the packet and said how
+// much work each of its pixels is. timing_reference/ checks it cycle for cycle against a
+// clocked model.
+//
+// A block j has a latency L, an initiation interval II, an input FIFO of depth b and
+// room for C = ⌈(L + 1) / II⌉ pixels started and not yet handed on (its pipeline
+// registers and its output register). Every signal is registered: what a block decides
+// in cycle t it decides from the state at the start of cycle t. With w the pixel's work
+// at the block (0: the block bypasses it), pixel n
+//
+//   starts      s_j(n) = max(d_{j−1}(n) + 1,            in the FIFO since the cycle before
+//                            s_j(n−1) + o_j(n−1),       the unit has issued the pixel before
+//                            d_j(n−C_j) + 1)            a register is free
+//   occupies    o_j(n) = II·w, or 1 if w = 0
+//   is done     f_j(n) = s_j(n) + II·(w − 1) + L, or s_j(n) + 1 if w = 0
+//   is handed on d_j(n) = max(f_j(n),
+//                            d_j(n−1) + 1,              one pixel a cycle, in order
+//                            s_{j+1}(n − b_{j+1}) + 1)  the next FIFO had room at the start of the cycle
+//
+// Every term refers to an earlier pixel or to the block before, so the sweep is exact in
+// pixel-major order (for each pixel, for each block). The raster (block 0) walks: its
+// pixel n starts when the walk reaches it and a register is free; hidden pixels cost a
+// step each and need no register (RasterWalk below).
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/common/report.hpp"
+
+namespace shadetlm::modules {
+
+// The pixels a block may hold between starting them and handing them on.
+inline uint64_t capacity(const Timing& t) { return (t.latency + 1 + t.ii - 1) / t.ii; }
+
+// What a block's timing counted (BlockStats holds the same, reported).
+struct BlockTimes {
+  uint64_t busy = 0;         // cycles its unit issued work
+  uint64_t starved = 0;      // free, waiting for input
+  uint64_t blocked = 0;      // free, every register full: waiting for room downstream
+  uint64_t fifo_cycles = 0;  // Σ over its pixels of the cycles they spent in its input FIFO
+  uint64_t fifo_peak = 0;    // the most pixels its input FIFO held at the end of a cycle
+  int64_t last = -1;         // the cycle it handed on its last pixel
+  uint64_t bin_cycles = 0;   // of busy_per_bin (0: not kept)
+  std::vector<uint64_t> busy_per_bin;
+  void add_busy(int64_t start, uint64_t cycles) {
+    busy += cycles;
+    if (bin_cycles > 0) histogram(uint64_t(start), cycles);
+  }
+
+ private:
+  void histogram(uint64_t start, uint64_t cycles);
+};
+
+// Told of each packet once its pixels are timed (inspection: waveforms, timeline).
+class TimedObserver {
+ public:
+  virtual ~TimedObserver() = default;
+  virtual void timed(const SpanPacket&) {}
+};
+
+class PixelLine;
+
+// Every triangle's and pixel's work and times at every block of the main pass, for the
+// timing check against the clocked reference (timing_reference/, docs/pipeline.md): a
+// text file, one line a record, kept in memory until written (small frames only).
+//
+//   block <name> <latency> <ii> <fifo_depth>       setup, the raster, then each span block
+//   t <triangle> <start> <handed>                 setup hands a triangle on
+//   r <cycle>                                     the raster takes it
+//   p <x> <y> <hidden> <w_1> … <w_J> <s_0> <d_0> … <s_J> <d_J>
+//                                                 a pixel: hidden steps walked before it,
+//                                                 its work at each span block, its times
+//   e <steps>                                     hidden steps after the triangle's last pixel
+//   end <cycle>                                   the pass's end
+//   stats <name> <busy> <starved> <blocked> <fifo_cycles> <fifo_peak>
+class TimingLog {
+ public:
+  void block(const std::string& name, const Timing& t);
+  void triangle(uint32_t id, int64_t start, int64_t handed);
+  void taken(int64_t cycle);
+  void pixels(const SpanPacket& p, uint64_t hidden, const PixelLine& line);
+  void trailing(uint64_t steps);
+  void end(int64_t cycle);
+  void stats(const std::string& name, const BlockTimes& t);
+  const std::string& text() const { return text_; }
+
+ private:
+  std::string text_;
+};
+
+// The main pass's pixel stream: the raster (slot 0) and the span blocks after it.
+class PixelLine {
+ public:
+  explicit PixelLine(std::vector<Timing> blocks);
+
+  // Span blocks: the work of the packet now passing (set by each block as it passes).
+  void set_work(int slot, Work w) { blocks_[size_t(slot)].work = w; }
+
+  // The raster: triangle `arrival` was handed on by setup at that cycle; the walk goes
+  // on through `steps` hidden pixels; the triangle's walk has ended.
+  int64_t start_triangle(int64_t arrival);
+  void walk_hidden(uint64_t steps);
+  // Times the pixels of packet `p` once every block has seen it; `hidden_before`: the
+  // steps walked before its first pixel. Then tells the observers and the log.
+  void sweep(const SpanPacket& p, uint64_t hidden_before);
+  void watch(TimedObserver* o) { observers_.push_back(o), keep_times = true; }
+  void set_log(TimingLog* log) { log_ = log, keep_times = keep_times || log; }
+  TimingLog* log() const { return log_; }
+  Work work(int slot) const { return blocks_[size_t(slot)].work; }
+
+  // The times of the packet swept last: start and hand-over of pixel i at block j.
+  int64_t start(int j, int i) const { return times_[size_t(j)][size_t(i)].s; }
+  int64_t handed(int j, int i) const { return times_[size_t(j)][size_t(i)].d; }
+  bool keep_times = false;  // set to fill them (inspection, the timing log)
+
+  // The first cycle at which every block of the pass is done.
+  int64_t end() const;
+  const BlockTimes& times(int slot) const { return blocks_[size_t(slot)].t; }
+  BlockTimes& times(int slot) { return blocks_[size_t(slot)].t; }
+  const Timing& timing(int slot) const { return blocks_[size_t(slot)].timing; }
+  size_t size() const { return blocks_.size(); }
+
+ private:
+  struct Slot {
+    Timing timing;
+    int64_t capacity = 1;
+    int64_t next_depth = 0;  // the next block's FIFO depth; 0: the last block, always room
+    int64_t free = 0;        // the cycle its unit can issue again
+    int64_t head = 0;        // the oldest pixel still in its FIFO (for the peak)
+    Work work;
+    BlockTimes t;
+  };
+  struct Times { int64_t s, d; };
+  int64_t& ring_s(size_t j, uint64_t n) { return ring_[(j * 2) * ring_size_ + (n & ring_mask_)]; }
+  int64_t& ring_d(size_t j, uint64_t n) { return ring_[(j * 2 + 1) * ring_size_ + (n & ring_mask_)]; }
+
+  std::vector<Slot> blocks_;
+  std::vector<int64_t> ring_;  // per block: the starts, then the hand-overs of the last pixels
+  uint64_t ring_size_ = 0, ring_mask_ = 0;
+  uint64_t n_ = 0;             // pixels swept so far
+  int64_t triangle_start_ = -1;  // when the raster took its last triangle
+  std::vector<std::vector<Times>> times_;
+  std::vector<TimedObserver*> observers_;
+  TimingLog* log_ = nullptr;
+};
+
+// Setup's triangles into the raster's triangle FIFO: triangle k starts when setup's unit
+// is free and a register is, and is handed on when done and the FIFO had room — it had
+// when the raster took triangle k − b at least a cycle before.
+class TriangleLine {
+ public:
+  TriangleLine(Timing setup, uint64_t raster_depth);
+  // The cycle triangle k (the next) is handed on to the raster.
+  int64_t next();
+  // The raster took triangle k at `cycle`.
+  void taken(int64_t cycle);
+  int64_t last_start() const { return last_start_; }
+  const BlockTimes& times() const { return t_; }
+  BlockTimes& times() { return t_; }
+  const Timing& timing() const { return timing_; }
+
+ private:
+  Timing timing_;
+  int64_t capacity_;
+  int64_t depth_;
+  int64_t free_ = 0, last_start_ = -1, last_d_ = -1;
+  uint64_t k_ = 0;                        // triangles handed on so far
+  std::vector<int64_t> handed_, taken_;  // of the last triangles (a ring)
+  uint64_t mask_ = 0;
+  BlockTimes t_;
+};
+
+}  // namespace shadetlm::modules

@@ -1,0 +1,339 @@
+#include "shadetlm/timing_reference/clocked.hpp"
+
+#include <chrono>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <sstream>
+
+#include <systemc>
+
+namespace shadetlm::timing_reference {
+
+namespace {
+
+const sc_core::sc_time kPeriod(1, sc_core::SC_NS);
+
+int64_t cycle_now() { return int64_t(sc_core::sc_time_stamp() / kPeriod + 0.5); }
+
+// A valid/ready handshake carrying an index (a triangle's or a pixel's). The sender
+// drives valid and data, the receiver ready; a transfer happens in a cycle where both
+// are high, as registered at the end of the cycle before.
+struct Link {
+  sc_core::sc_signal<bool> valid, ready;
+  sc_core::sc_signal<int64_t> data;
+};
+
+// What every clocked block has: a unit that issues one item per II·work cycles, room for
+// C items between issue and hand-over (its pipeline and output registers), and an output
+// handshake. Waiting cycles are counted as they pass and booked at the next issue (the
+// fast model books the waits before each start, none after the last).
+class Unit : public sc_core::sc_module {
+ public:
+  Unit(sc_core::sc_module_name name, const BlockSpec& spec, Link& out)
+      : sc_core::sc_module(name), spec_(spec), capacity_((spec.latency + 1 + spec.ii - 1) / spec.ii), out_(out) {
+    stats.name = spec.name;
+  }
+  sc_core::sc_in<bool> clk;
+  BlockStatsLine stats;
+  std::vector<int64_t>* handed = nullptr;  // per item: the cycle it was handed on
+  int64_t last = -1;
+  size_t handed_count = 0;
+
+ protected:
+  struct Held { int64_t item, done; };
+  bool room() const { return int64_t(held_.size()) < capacity_; }
+  // Issues `item` at t for `work` units (0: passes through in a cycle).
+  void issue(int64_t t, int64_t item, int64_t work) {
+    const int64_t busy = work > 0 ? spec_.ii * work : 1;
+    held_.push_back({item, work > 0 ? t + spec_.ii * (work - 1) + spec_.latency : t + 1});
+    free_ = t + busy;
+    stats.busy += busy;
+    stats.starved += starved_, stats.blocked += blocked_;
+    starved_ = blocked_ = 0;
+  }
+  void wait_cycle() { (room() ? starved_ : blocked_) += 1; }
+  // The output handshake of cycle t (before this cycle's registers change), then the
+  // registers for the next cycle.
+  bool handing_over() const { return out_.valid.read() && out_.ready.read(); }
+  void hand_over(int64_t t) {
+    (*handed)[size_t(held_.front().item)] = t;
+    last = t;
+    ++handed_count;
+    held_.pop_front();
+  }
+  void drive_output(int64_t t) {
+    const bool valid = !held_.empty() && held_.front().done <= t + 1;
+    out_.valid.write(valid);
+    out_.data.write(valid ? held_.front().item : -1);
+  }
+
+  BlockSpec spec_;
+  int64_t capacity_;
+  Link& out_;
+  std::deque<Held> held_;
+  int64_t free_ = 0, starved_ = 0, blocked_ = 0;
+};
+
+// Setup: a triangle every II cycles, handed on to the raster's triangle FIFO.
+class Source : public Unit {
+ public:
+  SC_HAS_PROCESS(Source);
+  Source(sc_core::sc_module_name name, const BlockSpec& spec, Link& out, size_t triangles, std::vector<int64_t>& start)
+      : Unit(name, spec, out), triangles_(triangles), start_(start) {
+    SC_METHOD(edge);
+    sensitive << clk.pos();
+    dont_initialize();
+  }
+
+ private:
+  void edge() {
+    const int64_t t = cycle_now();
+    const bool out = handing_over();
+    if (t >= free_ && next_ < triangles_) {
+      if (room()) start_[next_] = t, issue(t, int64_t(next_), 1), ++next_;
+      else blocked_ += 1;
+    }
+    if (out) hand_over(t);
+    drive_output(t);
+  }
+  size_t triangles_, next_ = 0;
+  std::vector<int64_t>& start_;
+};
+
+// The raster: takes a triangle from its FIFO, walks it one step a II — hidden pixels
+// need no register, a visible one waits for a free register and is handed on.
+class Walker : public Unit {
+ public:
+  SC_HAS_PROCESS(Walker);
+  Walker(sc_core::sc_module_name name, const BlockSpec& spec, Link& in, Link& out, const Workload& w,
+         Measured& m)
+      : Unit(name, spec, out), in_(in), w_(w), m_(m) {
+    SC_METHOD(edge);
+    sensitive << clk.pos();
+    dont_initialize();
+  }
+  bool done() const { return taken_ == w_.triangles.size() && cur_ < 0; }
+  int64_t walk_end() const { return free_; }
+
+ private:
+  bool triangle_left() const {
+    const Triangle& tri = w_.triangles[size_t(cur_)];
+    return hidden_ > 0 || pixel_ < tri.first_pixel + tri.pixels || trailing_ > 0;
+  }
+  void take(int64_t t) {
+    cur_ = int64_t(in_fifo_.front());
+    in_fifo_.pop_front();
+    const Triangle& tri = w_.triangles[size_t(cur_)];
+    m_.taken[size_t(cur_)] = t;
+    last_take_ = t;
+    ++taken_;
+    pixel_ = tri.first_pixel;
+    hidden_ = tri.pixels > 0 ? w_.pixels[pixel_].hidden : 0;
+    trailing_ = tri.trailing;
+    stats.starved += starved_;
+    starved_ = 0;
+  }
+  void step(int64_t t) {
+    free_ = t + spec_.ii;
+    stats.busy += spec_.ii;
+  }
+  void edge() {
+    const int64_t t = cycle_now();
+    const bool in = in_.valid.read() && in_.ready.read(), out = handing_over();
+    if (t >= free_) {
+      if (cur_ >= 0 && !triangle_left()) cur_ = -1;
+      if (cur_ < 0 && !in_fifo_.empty() && t > last_take_) take(t);
+      const Triangle* tri = cur_ >= 0 ? &w_.triangles[size_t(cur_)] : nullptr;
+      if (tri && hidden_ > 0) {
+        --hidden_, step(t);
+      } else if (tri && pixel_ < tri->first_pixel + tri->pixels) {
+        if (room()) {
+          m_.start[0][pixel_] = t;
+          issue(t, int64_t(pixel_), 1);
+          ++pixel_;
+          hidden_ = pixel_ < tri->first_pixel + tri->pixels ? w_.pixels[pixel_].hidden : 0;
+        } else {
+          blocked_ += 1;
+        }
+      } else if (tri && trailing_ > 0) {
+        --trailing_, step(t);
+      } else {
+        starved_ += 1;  // no triangle to walk
+      }
+    }
+    if (out) hand_over(t);
+    if (in) in_fifo_.push_back(in_.data.read());
+    drive_output(t);
+    in_.ready.write(int64_t(in_fifo_.size()) < spec_.depth);
+  }
+
+  Link& in_;
+  const Workload& w_;
+  Measured& m_;
+  std::deque<int64_t> in_fifo_;
+  int64_t cur_ = -1, last_take_ = -1, hidden_ = 0, trailing_ = 0;
+  size_t pixel_ = 0, taken_ = 0;
+};
+
+// A span block: its input FIFO, its unit, its output.
+class SpanUnit : public Unit {
+ public:
+  SC_HAS_PROCESS(SpanUnit);
+  SpanUnit(sc_core::sc_module_name name, const BlockSpec& spec, size_t index, Link& in, Link& out,
+           const Workload& w, std::vector<int64_t>& start)
+      : Unit(name, spec, out), index_(index), in_(in), w_(w), start_(start) {
+    SC_METHOD(edge);
+    sensitive << clk.pos();
+    dont_initialize();
+  }
+
+ private:
+  void edge() {
+    const int64_t t = cycle_now();
+    const bool in = in_.valid.read() && in_.ready.read(), out = handing_over();
+    if (t >= free_) {
+      if (!fifo_.empty() && room()) {
+        const int64_t n = fifo_.front();
+        fifo_.pop_front();
+        start_[size_t(n)] = t;
+        issue(t, n, int64_t(w_.pixels[size_t(n)].work[index_]));
+      } else {
+        wait_cycle();
+      }
+    }
+    if (out) hand_over(t);
+    if (in) fifo_.push_back(in_.data.read());
+    stats.fifo_cycles += int64_t(fifo_.size());
+    stats.fifo_peak = std::max(stats.fifo_peak, int64_t(fifo_.size()));
+    drive_output(t);
+    in_.ready.write(int64_t(fifo_.size()) < spec_.depth);
+  }
+
+  size_t index_;
+  Link& in_;
+  const Workload& w_;
+  std::vector<int64_t>& start_;
+  std::deque<int64_t> fifo_;
+};
+
+// Stops the simulation once every pixel has left the last block and the walk is over,
+// or at `bound` cycles (everything done one after another finishes before it).
+class Monitor : public sc_core::sc_module {
+ public:
+  SC_HAS_PROCESS(Monitor);
+  Monitor(sc_core::sc_module_name name, std::function<bool()> done, int64_t bound)
+      : sc_core::sc_module(name), done_(std::move(done)), bound_(bound) {
+    SC_METHOD(edge);
+    sensitive << clk.pos();
+    dont_initialize();
+  }
+  sc_core::sc_in<bool> clk;
+  bool finished = false;
+
+ private:
+  void edge() {
+    if (done_()) finished = true;
+    if (finished || cycle_now() >= bound_) sc_core::sc_stop();
+  }
+  std::function<bool()> done_;
+  int64_t bound_;
+};
+
+}  // namespace
+
+Measured run_clocked(const Workload& w) {
+  Measured m;
+  const size_t line = w.blocks.size() - 1, pixels = w.pixels.size(), triangles = w.triangles.size();
+  m.start.assign(line, std::vector<int64_t>(pixels, -1));
+  m.handed = m.start;
+  m.setup_start.assign(triangles, -1);
+  m.setup_handed = m.taken = m.setup_start;
+
+  sc_core::sc_clock clk("clk", kPeriod);
+  std::vector<std::unique_ptr<Link>> links;
+  for (size_t j = 0; j <= line; ++j) links.push_back(std::make_unique<Link>());
+  Source setup("setup", w.blocks[0], *links[0], triangles, m.setup_start);
+  setup.handed = &m.setup_handed;
+  Walker raster("raster", w.blocks[1], *links[0], *links[1], w, m);
+  raster.handed = &m.handed[0];
+  std::vector<std::unique_ptr<SpanUnit>> units;
+  for (size_t j = 1; j < line; ++j) {
+    units.push_back(std::make_unique<SpanUnit>(w.blocks[j + 1].name.c_str(), w.blocks[j + 1], j - 1, *links[j],
+                                               *links[j + 1], w, m.start[j]));
+    units.back()->handed = &m.handed[j];
+  }
+  setup.clk(clk), raster.clk(clk);
+  for (auto& u : units) u->clk(clk);
+  // Registers start empty: nothing valid, every FIFO ready — and the last block's
+  // output always taken.
+  for (auto& l : links) l->ready.write(true);
+  // A bound no run can reach: every pixel through every block, one after another.
+  int64_t bound = 1000;
+  for (const BlockSpec& b : w.blocks) bound += int64_t(triangles + pixels) * (b.latency + b.ii + 2);
+  for (const Pixel& p : w.pixels) {
+    bound += p.hidden * w.blocks[1].ii;
+    for (size_t j = 0; j < p.work.size(); ++j) bound += int64_t(p.work[j]) * w.blocks[j + 2].ii;
+  }
+  for (const Triangle& t : w.triangles) bound += t.trailing * w.blocks[1].ii;
+  const Unit& last_block = units.empty() ? static_cast<const Unit&>(raster) : *units.back();
+  auto done = [&] { return raster.done() && last_block.handed_count == pixels; };
+  Monitor monitor("monitor", done, bound);
+  monitor.clk(clk);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  sc_core::sc_start();
+  m.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  m.finished = monitor.finished;
+  m.end = std::max(raster.walk_end(), setup.last + 1);
+  m.end = std::max(m.end, raster.last + 1);
+  for (auto& u : units) m.end = std::max(m.end, u->last + 1);
+  m.stats.push_back(setup.stats);
+  m.stats.push_back(raster.stats);
+  for (auto& u : units) m.stats.push_back(u->stats);
+  return m;
+}
+
+bool compare(const Workload& w, const Measured& m, std::string& report, size_t show) {
+  std::ostringstream out;
+  size_t mismatches = 0, compared = 0;
+  auto check = [&](int64_t fast, int64_t clocked, const std::string& what) {
+    ++compared;
+    if (fast == clocked) return;
+    if (mismatches++ < show) out << "  " << what << ": fast " << fast << ", clocked " << clocked << "\n";
+  };
+  if (!m.finished) out << "  the clocked model did not finish (a deadlock?)\n", ++mismatches;
+  for (size_t k = 0; k < w.triangles.size(); ++k) {
+    const Triangle& t = w.triangles[k];
+    const std::string name = "triangle " + std::to_string(t.id);
+    check(t.start, m.setup_start[k], name + " starts at setup");
+    check(t.handed, m.setup_handed[k], name + " leaves setup");
+    check(t.taken, m.taken[k], name + " taken by the raster");
+  }
+  for (size_t n = 0; n < w.pixels.size(); ++n) {
+    const Pixel& p = w.pixels[n];
+    for (size_t j = 0; j < p.start.size(); ++j) {
+      const std::string name = "pixel (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ") at " + w.blocks[j + 1].name;
+      check(p.start[j], m.start[j][n], name + ", start");
+      check(p.handed[j], m.handed[j][n], name + ", hand-over");
+    }
+  }
+  check(w.end, m.end, "the pass's end");
+  for (size_t j = 0; j < w.stats.size() && j < m.stats.size(); ++j) {
+    const BlockStatsLine &a = w.stats[j], &b = m.stats[j];
+    check(a.busy, b.busy, a.name + " busy cycles");
+    check(a.starved, b.starved, a.name + " starved cycles");
+    check(a.blocked, b.blocked, a.name + " blocked cycles");
+    if (j >= 2) {  // span blocks: their FIFOs
+      check(a.fifo_cycles, b.fifo_cycles, a.name + " FIFO pixel-cycles");
+      check(a.fifo_peak, b.fifo_peak, a.name + " FIFO peak");
+    }
+  }
+  std::ostringstream head;
+  head << compared << " times compared (" << w.pixels.size() << " pixels, " << w.triangles.size()
+       << " triangles, " << w.blocks.size() << " blocks), " << mismatches << " different\n";
+  report = head.str() + out.str();
+  return mismatches == 0;
+}
+
+}  // namespace shadetlm::timing_reference

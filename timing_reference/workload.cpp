@@ -1,0 +1,66 @@
+#include "shadetlm/timing_reference/workload.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "shadetlm/core/input_error.hpp"
+
+namespace shadetlm::timing_reference {
+
+Workload read_workload(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw core::InputError(path, "", "cannot open the timing log");
+  Workload w;
+  std::string line;
+  size_t number = 0;
+  auto fail = [&](const std::string& why) {
+    throw core::InputError(path, "line " + std::to_string(number), why);
+  };
+  while (std::getline(in, line)) {
+    ++number;
+    std::istringstream s(line);
+    std::string kind;
+    s >> kind;
+    if (kind == "block") {
+      BlockSpec b;
+      s >> b.name >> b.latency >> b.ii >> b.depth;
+      if (!s || b.latency < 1 || b.ii < 1 || b.depth < 0) fail("expected: block <name> <latency ≥ 1> <ii ≥ 1> <depth>");
+      w.blocks.push_back(b);
+    } else if (kind == "t") {
+      Triangle t;
+      s >> t.id >> t.start >> t.handed;
+      if (!s) fail("expected: t <triangle> <start> <handed>");
+      t.first_pixel = w.pixels.size();
+      w.triangles.push_back(t);
+    } else if (kind == "r") {
+      if (w.triangles.empty() || !(s >> w.triangles.back().taken)) fail("expected: r <cycle>, after a triangle");
+    } else if (kind == "p") {
+      if (w.triangles.empty() || w.blocks.size() < 2) fail("a pixel before its blocks and triangle");
+      Pixel p;
+      s >> p.x >> p.y >> p.hidden;
+      const size_t line_blocks = w.blocks.size() - 1;
+      p.work.resize(line_blocks - 1);
+      p.start.resize(line_blocks), p.handed.resize(line_blocks);
+      for (auto& x : p.work) s >> x;
+      for (size_t j = 0; j < line_blocks; ++j) s >> p.start[j] >> p.handed[j];
+      if (!s || p.hidden < 0) fail("expected: p <x> <y> <hidden> <work…> <start handed…>");
+      w.pixels.push_back(std::move(p));
+      ++w.triangles.back().pixels;
+    } else if (kind == "e") {
+      if (w.triangles.empty() || !(s >> w.triangles.back().trailing)) fail("expected: e <steps>, after a triangle");
+    } else if (kind == "end") {
+      if (!(s >> w.end)) fail("expected: end <cycle>");
+    } else if (kind == "stats") {
+      BlockStatsLine b;
+      s >> b.name >> b.busy >> b.starved >> b.blocked >> b.fifo_cycles >> b.fifo_peak;
+      if (!s) fail("expected: stats <name> <busy> <starved> <blocked> <fifo_cycles> <fifo_peak>");
+      w.stats.push_back(b);
+    } else if (!kind.empty()) {
+      fail("unknown record '" + kind + "'");
+    }
+  }
+  if (w.blocks.size() < 2) throw core::InputError(path, "block", "needs setup and the raster at least");
+  return w;
+}
+
+}  // namespace shadetlm::timing_reference

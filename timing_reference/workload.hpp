@@ -1,0 +1,47 @@
+#pragma once
+// What the clocked timing reference runs: the main pass's blocks (latency, II, FIFO
+// depth), each triangle's walk and each pixel's work at each block, read from a timing
+// log (`shadetlm render --timing-log`, format in modules/common/timing.hpp) — with the
+// times the fast model gave, which the reference checks and never reads while it runs.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace shadetlm::timing_reference {
+
+struct BlockSpec {
+  std::string name;
+  int64_t latency = 1, ii = 1, depth = 1;
+};
+
+struct Pixel {
+  int x = 0, y = 0;
+  int64_t hidden = 0;                // the raster's hidden steps just before it
+  std::vector<uint32_t> work;        // per span block (units of its II; 0: bypassed)
+  std::vector<int64_t> start, handed;  // the fast model's, per line block (raster first)
+};
+
+struct Triangle {
+  uint32_t id = 0;
+  int64_t start = 0, handed = 0, taken = 0;  // the fast model's: at setup, by the raster
+  size_t first_pixel = 0, pixels = 0;
+  int64_t trailing = 0;  // hidden steps after its last pixel
+};
+
+struct BlockStatsLine {
+  std::string name;
+  int64_t busy = 0, starved = 0, blocked = 0, fifo_cycles = 0, fifo_peak = 0;
+};
+
+struct Workload {
+  std::vector<BlockSpec> blocks;  // setup, the raster, the span blocks
+  std::vector<Triangle> triangles;
+  std::vector<Pixel> pixels;
+  int64_t end = 0;                      // the fast model's
+  std::vector<BlockStatsLine> stats;    // the fast model's
+};
+
+// Reads a timing log; throws core::InputError naming the file and line.
+Workload read_workload(const std::string& path);
+
+}  // namespace shadetlm::timing_reference
