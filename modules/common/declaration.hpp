@@ -94,7 +94,19 @@ struct BlockDecl {
   // Its input FIFO (<name>.fifo_depth): of pixels, of triangles (the raster), or none
   // (setup, the source; a frame pass).
   enum class Fifo { None, Pixels, Triangles } fifo = Fifo::Pixels;
+  // The arithmetic units on its critical path for its settings (a mode): their latency
+  // is added to <name>.latency, and its II is at least theirs. Empty: none.
+  std::function<Timing(const BlockContext&)> units;
 };
+
+// An arithmetic unit's latency and II (pipeline.unit.<name>.latency and .ii, docs/
+// configuration.md "Arithmetic units").
+inline Timing unit(const core::Settings& s, const std::string& name) {
+  return {uint64_t(s.integer("unit." + name + ".latency")), uint64_t(s.integer("unit." + name + ".ii")), 0};
+}
+// Units one after another: latencies add, the slowest II paces them.
+inline Timing operator+(Timing a, Timing b) { return {a.latency + b.latency, std::max(a.ii, b.ii), 0}; }
+inline Timing operator*(uint64_t n, Timing t) { return {n * t.latency, n > 0 ? t.ii : 1, 0}; }
 
 // A block of a kernel and the SystemC module built around it as
 // Module(name, kernel, timing, period).

@@ -40,6 +40,13 @@ nlohmann::json RenderResult::stats_json() const {
                          {"latency", b.timing.latency},    {"ii", b.timing.ii},
                          {"ops", b.stats.ops.to_json()}};
     bj["utilization"] = frame_cycles > 0 ? double(b.stats.busy_cycles) / double(frame_cycles) : 0.0;
+    if (frame_cycles > 0) {  // the timing model's (docs/pipeline.md, "Timing")
+      bj["starved_cycles"] = b.stats.starved_cycles;
+      bj["blocked_cycles"] = b.stats.blocked_cycles;
+      bj["fifo_depth"] = b.timing.fifo_depth;
+      bj["fifo_peak"] = b.stats.fifo_peak;
+      bj["fifo_mean"] = double(b.stats.fifo_cycles) / double(frame_cycles);
+    }
     if (!b.ranges.empty()) bj["ranges"] = to_json(b.ranges);
     if (!b.details.is_null()) bj["details"] = b.details;
     if (b.numbers) {
@@ -55,8 +62,7 @@ nlohmann::json RenderResult::stats_json() const {
   j["numbers"] = numbers;
   if (bin_cycles > 0 && frame_cycles > 0) {
     // Utilization over time: each block's busy share of every bin, and the busiest
-    // block per bin. No back-pressure in the timing model, so no stalls: a block is
-    // busy or waiting for input (a bubble).
+    // block per bin.
     nlohmann::json over_time = {{"bin_cycles", bin_cycles}, {"blocks", nlohmann::json::object()}};
     const size_t bins = size_t((frame_cycles + bin_cycles - 1) / bin_cycles);
     std::vector<std::pair<uint64_t, std::string>> busiest(bins, {0, ""});

@@ -4,13 +4,33 @@
 
 namespace shadetlm::modules {
 
+namespace {
+// Each mode's critical path, unit after unit (docs/configuration.md, "Arithmetic units").
+Timing normalize_units(NormalizeMode mode, const core::Settings& s) {
+  const Timing add = unit(s, "add"), mul = unit(s, "mul"), div = unit(s, "div"), sqrt = unit(s, "sqrt"),
+               table = unit(s, "rsqrt_table");
+  const Timing radicand = mul + add + add;      // N·N: three products side by side, two sums
+  const Timing newton = mul + mul + mul + add;  // y · (1.5 − 0.5·r·y²)
+  switch (mode) {
+    case NormalizeMode::Exact: return radicand + sqrt + div + mul;  // N · (1 / √r)
+    case NormalizeMode::ForwardDifference: return add + sqrt + div + mul;  // r by one addition, then exact
+    case NormalizeMode::Rsqrt0: return radicand + table + mul;
+    case NormalizeMode::Rsqrt1: return radicand + table + newton + mul;
+    default: return radicand + table + 2 * newton + mul;
+  }
+}
+}  // namespace
+
 BlockDecl normalize_block() {
-  return {"normalize", {12, 1}, true,
-          {{"mode", "exact", normalize_mode_names(), 0, 0, "how the normal is normalized"}},
-          {},  // always: every shading path lights a unit normal
-          [](const BlockContext& ctx) -> std::unique_ptr<Block> {
-            return std::make_unique<SpanBlock<NormalizeKernel>>(parse_normalize_mode(ctx.string("mode")), ctx.format());
-          }};
+  BlockDecl d{"normalize", {1, 1}, true,
+              {{"mode", "exact", normalize_mode_names(), 0, 0, "how the normal is normalized"}},
+              {},  // always: every shading path lights a unit normal
+              [](const BlockContext& ctx) -> std::unique_ptr<Block> {
+                return std::make_unique<SpanBlock<NormalizeKernel>>(parse_normalize_mode(ctx.string("mode")),
+                                                                    ctx.format());
+              }};
+  d.units = [](const BlockContext& ctx) { return normalize_units(parse_normalize_mode(ctx.string("mode")), ctx.settings); };
+  return d;
 }
 
 }  // namespace shadetlm::modules

@@ -142,11 +142,18 @@ class NormalizeKernel {
  public:
   // The radicand and inverse square root datapaths are of `format`
   // (pipeline.normalize.format).
-  explicit NormalizeKernel(NormalizeMode mode, core::NumberFormat format = {}) : mode_(mode), numbers_(format) {}
+  explicit NormalizeKernel(NormalizeMode mode, core::NumberFormat format = {}) : mode_(mode), numbers_(format) {
+    for (auto& w : seeded_) w = 1;
+    seeded_[0] = 2;
+  }
   void process(SpanPacket& p);
   Ops ops() const;
   NormalizeMode mode() const { return mode_; }
-  Work work(const SpanPacket&) const { return {nullptr, 1}; }  // a pixel a cycle
+  // A pixel a cycle; the forward-difference radicand's seed (R0, δ0: 8 multiplications,
+  // 5 additions) takes the multipliers a cycle before each packet's first pixel.
+  Work work(const SpanPacket&) const {
+    return mode_ == NormalizeMode::ForwardDifference ? Work{seeded_, 0} : Work{nullptr, 1};
+  }
   bool bypass(const SpanPacket&) const { return false; }
   NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
   // Waveforms: the radicand |N|² of the incoming normal (kept only for traced
@@ -162,6 +169,7 @@ class NormalizeKernel {
   template <class T> void normalize_as(SpanPacket& p, NormalizeMode mode);
 
   NormalizeMode mode_;
+  uint16_t seeded_[kSpanMax];
   PacketTally<2> tally_;  // packets normalized in mode_ (0), or exactly (1: bump packets)
   NumberContext numbers_;
   uint64_t nonfinite_ = 0;

@@ -29,6 +29,23 @@ PipelineDecl standard_pipeline() {
       {"elaborate", "needed", {"needed", "all"}, 0, 0,
        "elaborate the blocks some material needs, or every block (to measure what skipping saves)"},
   };
+  // The arithmetic units (docs/configuration.md, "Arithmetic units"): single-precision
+  // latency and reciprocal throughput of Intel Skylake's ADDSS, MULSS, DIVSS, SQRTSS and
+  // RSQRTSS (Agner Fog, Instruction tables, 2022), the throughput rounded up to whole
+  // cycles.
+  const struct { const char* name; int latency, ii; const char* what; } units[] = {
+      {"add", 4, 1, "floating-point adder"},
+      {"mul", 4, 1, "floating-point multiplier"},
+      {"div", 11, 3, "divider"},
+      {"sqrt", 12, 3, "square root"},
+      {"rsqrt_table", 4, 1, "reciprocal square root estimate (table)"},
+  };
+  for (const auto& u : units) {
+    d.settings.push_back({std::string("unit.") + u.name + ".latency", u.latency, {}, 1, 10000,
+                          std::string("latency of the ") + u.what});
+    d.settings.push_back({std::string("unit.") + u.name + ".ii", u.ii, {}, 1, 10000,
+                          std::string("cycles between operations of the ") + u.what});
+  }
   // The passes, in order. A pre-pass (a depth pre-pass, say) would go before "main".
   d.passes = {
       {"main",
@@ -67,6 +84,11 @@ Pipeline::Pipeline(const core::Scene& scene, const PipelineDecl& declaration)
       if (!all && b.needed && !b.needed(scene)) continue;
       Timing timing{uint64_t(settings_.integer(b.name + ".latency")), uint64_t(settings_.integer(b.name + ".ii")), 0};
       if (b.fifo != BlockDecl::Fifo::None) timing.fifo_depth = uint64_t(settings_.integer(b.name + ".fifo_depth"));
+      if (b.units) {
+        const Timing units = b.units(BlockContext{scene, settings_, b.name});
+        timing.latency += units.latency;
+        timing.ii = std::max(timing.ii, units.ii);
+      }
       blocks_.push_back({b.name, timing, b.make(BlockContext{scene, settings_, b.name})});
     }
   check_shape(blocks_);
