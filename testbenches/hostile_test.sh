@@ -55,6 +55,17 @@ hostile bad-override "--set" render neg.json --set 'objects.7.radius=1'
 hostile bad-number-format "pipeline.number_format" render neg.json --set 'pipeline.number_format=float64'
 hostile too-wide-fixed "pipeline.normalize.format" render neg.json --set 'pipeline.normalize.format=fixed:20.40'
 hostile number-format-type "pipeline.lighting.format" render neg.json --set 'pipeline.lighting.format=16'
+# Timing settings (docs/configuration.md): a FIFO of no room would deadlock, fractions
+# and absurd sizes are no design, units take at least a cycle.
+hostile fifo-zero "pipeline.lighting.fifo_depth" render neg.json --set 'pipeline.lighting.fifo_depth=0'
+hostile fifo-negative "pipeline.normalize.fifo_depth" render neg.json --set 'pipeline.normalize.fifo_depth=-2'
+hostile fifo-fraction "pipeline.framebuffer.fifo_depth" render neg.json --set 'pipeline.framebuffer.fifo_depth=1.5'
+hostile fifo-huge "pipeline.raster.fifo_depth" render neg.json --set 'pipeline.raster.fifo_depth=1000000000'
+hostile fifo-of-setup "pipeline.setup.fifo_depth" render neg.json --set 'pipeline.setup.fifo_depth=4'
+hostile latency-zero "pipeline.lighting.latency" render neg.json --set 'pipeline.lighting.latency=0'
+hostile unit-zero "pipeline.unit.div.ii" render neg.json --set 'pipeline.unit.div.ii=0'
+hostile unit-huge "pipeline.unit.sqrt.latency" render neg.json --set 'pipeline.unit.sqrt.latency=99999999'
+hostile unit-text "pipeline.unit.mul.latency" render neg.json --set 'pipeline.unit.mul.latency="four"'
 nine='{"type": "directional", "direction": [0,-1,0]}'
 hostile too-many-lights "at most 8 lights" render neg.json --set "lights=[$nine,$nine,$nine,$nine,$nine,$nine,$nine,$nine,$nine]"
 

@@ -1,0 +1,84 @@
+#!/usr/bin/env python3
+"""Checks a traced VCD for causality (docs/inspecting.md): every pixel a block hands on
+must reach the next traced block no earlier than (1 + that block's latency) cycles after
+(it waits a cycle in the FIFO, then the block's latency). Prints the pairs checked and
+those that break it, and those where a block shows the pixel before the block before it
+did (an overtake). Exit 1 if any breaks it.
+
+    scripts/vcd-causality.py TRACE.vcd STATS.json
+
+STATS.json (`render --stats`) gives the blocks' order, latencies and the clock.
+"""
+import json
+import sys
+
+
+def read_vcd(path):
+    """{block: {(x, y, triangle): time}} for each rise or change of a block's pixel."""
+    ids, scope, seen = {}, [], {}
+    values, changed = {}, set()
+    now = None
+
+    def flush():
+        for block in changed:
+            v = values.get(block, {})
+            if v.get("valid") == 1:
+                seen.setdefault(block, {}).setdefault((v.get("x"), v.get("y"), v.get("triangle")), now)
+        changed.clear()
+
+    with open(path) as f:
+        tokens = iter(f.read().split())
+        for tok in tokens:
+            if tok == "$scope":
+                next(tokens)
+                scope.append(next(tokens))
+            elif tok == "$upscope":
+                scope.pop()
+            elif tok == "$var":
+                _kind, _width, ident, name = next(tokens), next(tokens), next(tokens), next(tokens)
+                if name in ("valid", "x", "y", "triangle") and scope:
+                    ids[ident] = (scope[-1], name)
+            elif tok.startswith("#"):
+                flush()
+                now = int(tok[1:])
+            elif tok[0] in "01" and tok[1:] in ids:
+                block, name = ids[tok[1:]]
+                values.setdefault(block, {})[name] = int(tok[0])
+                changed.add(block)
+            elif tok[0] == "b":
+                ident = next(tokens)
+                if ident in ids:
+                    block, name = ids[ident]
+                    values.setdefault(block, {})[name] = int(tok[1:], 2)
+                    changed.add(block)
+        flush()
+    return seen
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    seen = read_vcd(sys.argv[1])
+    stats = json.load(open(sys.argv[2]))
+    period_ps = 1e6 / stats["clock_mhz"]
+    order = [b for b in stats["elaborated"] if b in seen]
+    checked = broken = overtakes = 0
+    for a, b in zip(order, order[1:]):
+        need = (1 + stats["blocks"][b]["latency"]) * period_ps
+        for pixel, t_a in seen[a].items():
+            t_b = seen[b].get(pixel)
+            if t_b is None:
+                continue
+            checked += 1
+            if t_b < t_a + need:
+                broken += 1
+                if t_b < t_a:
+                    overtakes += 1
+                if broken <= 5:
+                    print(f"  pixel {pixel[:2]} of triangle {pixel[2]}: {a} at {t_a} ps, {b} at {t_b} ps")
+    print(f"{checked} block-to-block pixel pairs checked, {broken} too early, {overtakes} overtaking")
+    sys.exit(1 if broken else 0)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,110 @@
+#!/usr/bin/env bash
+# The fast timing model against the clocked timing reference (docs/pipeline.md, "The
+# timing check"): every golden scene, and stress configurations built to mix rates —
+# many lights on few pixels, bursts of parallax iterations, FIFOs of depth 1 and 2, a
+# slow block at the end — must give the same start and hand-over cycle for every pixel
+# at every block, the same frame cycles and the same busy, starved, blocked and FIFO
+# figures. The stress configurations must also stall (blocked cycles > 0 somewhere), or
+# they would not test back-pressure. Usage: timing_check_test.sh SHADETLM SOURCE_DIR
+set -u
+bin=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+passes=0
+failures=0
+
+# check NAME STALLS SCENE [--set k=v]...: STALLS=1 requires blocked cycles somewhere.
+check() {
+  local name=$1 stalls=$2 scene=$3
+  shift 3
+  if ! "$bin" render "$scene" "$@" -o "$tmp/f.exr" --timing-log "$tmp/t.log" >"$tmp/out" 2>&1; then
+    echo "FAIL $name: render"; sed 's/^/    /' "$tmp/out" | tail -3; ((failures++)); return
+  fi
+  if ! "$bin" timing-check "$tmp/t.log" --show 5 >"$tmp/check" 2>&1; then
+    echo "FAIL $name:"; sed 's/^/    /' "$tmp/check"; ((failures++)); return
+  fi
+  local blocked
+  blocked=$(awk '$1 == "stats" { b += $5 } END { print b + 0 }' "$tmp/t.log")
+  if ((stalls)) && ((blocked == 0)); then echo "FAIL $name: no block ever stalled"; ((failures++)); return; fi
+  echo "ok $name: $(head -1 "$tmp/check" | cut -d: -f2-), blocked cycles $blocked"
+  ((passes++))
+}
+
+for scene in "$src"/golden/*/scene.json; do
+  check "golden $(basename "$(dirname "$scene")")" 0 "$scene"
+done
+
+# Eight lights on a small sphere: lighting takes 8 cycles a pixel, everything before it stalls.
+cat >"$tmp/lights.json" <<'JSON'
+{"camera": {"position": [0, 0, 4], "target": [0, 0, 0], "resolution": [48, 36]},
+ "lights": [{"type": "point", "position": [2, 2, 2]}, {"type": "point", "position": [-2, 2, 2]},
+            {"type": "point", "position": [2, -2, 2]}, {"type": "point", "position": [-2, -2, 2]},
+            {"type": "point", "position": [0, 3, 1]}, {"type": "point", "position": [0, -3, 1]},
+            {"type": "point", "position": [3, 0, 1]}, {"type": "point", "position": [-3, 0, 1]}],
+ "objects": [{"shape": "sphere", "radius": 0.8, "segments": 24, "rings": 12}]}
+JSON
+check "eight lights, FIFOs of 1" 1 "$tmp/lights.json" --set pipeline.normalize.mode=rsqrt1 \
+  --set pipeline.lighting.fifo_depth=1 --set pipeline.normalize.fifo_depth=1 --set pipeline.normal_interp.fifo_depth=1
+check "eight lights, FIFOs of 2" 1 "$tmp/lights.json" --set pipeline.normalize.mode=rsqrt0 \
+  --set pipeline.lighting.fifo_depth=2 --set pipeline.framebuffer.fifo_depth=2
+# Bursts of parallax iterations behind a slow framebuffer.
+check "parallax bursts, slow end" 1 "$src/golden/parallax-steps/scene.json" --set pipeline.parallax.fifo_depth=1 \
+  --set pipeline.framebuffer.ii=4 --set pipeline.framebuffer.latency=9 --set pipeline.lighting.fifo_depth=2
+# A slow block at the end of a bump path, every block elaborated (bypasses in the stream).
+check "bump, all blocks, slow end" 1 "$src/golden/bump-knot/scene.json" --set pipeline.elaborate=all \
+  --set pipeline.framebuffer.ii=5 --set pipeline.framebuffer.fifo_depth=1 --set pipeline.bump_fetch.fifo_depth=2
+# A fast setup into a raster FIFO of one triangle, the forward-difference seed per packet.
+check "setup against the raster's FIFO" 1 "$src/golden/demo/scene.json" --set pipeline.setup.ii=1 \
+  --set pipeline.setup.latency=1 --set pipeline.raster.fifo_depth=1 --set pipeline.normalize.mode=forward-difference
+# Textures: taps per pixel vary with the footprint.
+check "texture taps, FIFOs of 1" 1 "$src/golden/texture-screen/scene.json" --set pipeline.texture_fetch.filter=anisotropic \
+  --set pipeline.texture_fetch.fifo_depth=1 --set pipeline.lighting.ii=3 --set pipeline.normalize.mode=rsqrt2
+
+# The waveforms keep the same order: no pixel reaches a block before the block before
+# it handed it on plus a cycle and the block's latency (scripts/vcd-causality.py) — and
+# the checker itself catches a pixel that does.
+if "$bin" render "$src/golden/demo/scene.json" -o "$tmp/f.exr" --vcd "$tmp/t.vcd" --trace-region 30,20,90,50 \
+     --stats "$tmp/s.json" >/dev/null && python3 "$src/scripts/vcd-causality.py" "$tmp/t.vcd" "$tmp/s.json" >"$tmp/c"; then
+  echo "ok waveform causality: $(tail -1 "$tmp/c")"; ((passes++))
+else
+  echo "FAIL waveform causality:"; sed 's/^/    /' "$tmp/c"; ((failures++))
+fi
+cat >"$tmp/bad.vcd" <<'VCD'
+$timescale 1 ps $end
+$scope module SystemC $end
+$scope module a $end
+$var wire 1 v valid $end
+$var wire 32 x x [31:0] $end
+$var wire 32 y y [31:0] $end
+$var wire 32 t triangle [31:0] $end
+$upscope $end
+$scope module b $end
+$var wire 1 w valid $end
+$var wire 32 X x [31:0] $end
+$var wire 32 Y y [31:0] $end
+$var wire 32 T triangle [31:0] $end
+$upscope $end
+$upscope $end
+$enddefinitions $end
+#2000
+1w
+b101 X
+b11 Y
+b0 T
+#4000
+0w
+1v
+b101 x
+b11 y
+b0 t
+VCD
+echo '{"clock_mhz": 500, "elaborated": ["a", "b"], "blocks": {"a": {"latency": 1}, "b": {"latency": 1}}}' >"$tmp/bad.json"
+if python3 "$src/scripts/vcd-causality.py" "$tmp/bad.vcd" "$tmp/bad.json" >"$tmp/c"; then
+  echo "FAIL the causality checker passed a pixel that overtook"; ((failures++))
+else
+  echo "ok the causality checker catches an overtake: $(tail -1 "$tmp/c")"; ((passes++))
+fi
+
+echo "$passes passed, $failures failed"
+[[ $failures -eq 0 && $passes -ge 20 ]]
