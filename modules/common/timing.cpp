@@ -36,6 +36,13 @@ PixelLine::PixelLine(std::vector<Timing> blocks) {
   ring_mask_ = ring_size_ - 1;
   // −1: a pixel before the first, handed on and started "before cycle 0".
   ring_.assign(blocks_.size() * 2 * ring_size_, -1);
+  for (size_t j = 0; j < blocks_.size(); ++j) {
+    Slot& b = blocks_[j];
+    b.s = &ring_[j * 2 * ring_size_];
+    b.d = b.s + ring_size_;
+    b.ii = int64_t(b.timing.ii), b.latency = int64_t(b.timing.latency);
+  }
+  for (size_t j = 0; j + 1 < blocks_.size(); ++j) blocks_[j].next_s = blocks_[j + 1].s;
   times_.assign(blocks_.size(), std::vector<Times>(64));
 }
 
@@ -56,6 +63,24 @@ void PixelLine::walk_hidden(uint64_t steps) {
   r.free += int64_t(cycles);
 }
 
+// Pixel n at block j (timing.hpp's recurrence); `arrived` = d_{j−1}(n) + 1.
+inline int64_t PixelLine::span_block(Slot& b, uint64_t n, uint32_t w, int64_t arrived) {
+  const int64_t room = b.d[(n - uint64_t(b.capacity)) & ring_mask_] + 1;  // a register free
+  const int64_t s = std::max({arrived, b.free, room});
+  // Waiting while every register is full is blocked; the rest, starved.
+  const int64_t blocked_until = std::min(std::max(room, b.free), s);
+  b.t.blocked += uint64_t(blocked_until - b.free);
+  b.t.starved += uint64_t(s - blocked_until);
+  // FIFO occupancy: it held the pixel from the end of cycle d_{j−1}(n) to s.
+  b.t.fifo_cycles += uint64_t(s - arrived + 1);
+  while (b.head < int64_t(n) && b.s[uint64_t(b.head) & ring_mask_] < arrived) ++b.head;
+  b.t.fifo_peak = std::max(b.t.fifo_peak, n + 1 - uint64_t(b.head));
+  const int64_t o = w > 0 ? b.ii * int64_t(w) : 1;
+  b.t.add_busy(s, uint64_t(o));
+  b.free = s + o;
+  return s;
+}
+
 void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before) {
   const int count = p.count;
   walk_hidden(hidden_before);
@@ -63,36 +88,26 @@ void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before) {
     for (auto& t : times_) t.resize(size_t(count));
   const size_t blocks = blocks_.size();
   for (int i = 0; i < count; ++i, ++n_) {
-    int64_t arrived = 0;  // d_{j−1}(n) + 1, for j > 0
+    const uint64_t slot = n_ & ring_mask_;
+    int64_t arrived = 0;  // d_{j−1}(n) + 1
     for (size_t j = 0; j < blocks; ++j) {
       Slot& b = blocks_[j];
-      const int64_t room = ring_d(j, n_ - uint64_t(b.capacity)) + 1;  // a register free
-      int64_t s, f, o;
-      if (j == 0) {  // the raster: the walk has reached the pixel (a step of its own)
-        s = std::max(b.free, room);
+      int64_t s, f;
+      if (j == 0) {  // the raster: the walk has reached the pixel (a step of its own), a register is free
+        s = std::max(b.free, b.d[(n_ - uint64_t(b.capacity)) & ring_mask_] + 1);
         b.t.blocked += uint64_t(s - b.free);
-        o = int64_t(b.timing.ii);
-        f = s + int64_t(b.timing.latency);
+        b.t.add_busy(s, uint64_t(b.ii));
+        b.free = s + b.ii;
+        f = s + b.latency;
       } else {
-        s = std::max({arrived, b.free, room});
-        // Waiting while every register is full is blocked; the rest, starved.
-        const int64_t blocked_until = std::min(std::max(room, b.free), s);
-        b.t.blocked += uint64_t(blocked_until - b.free);
-        b.t.starved += uint64_t(s - blocked_until);
-        // FIFO occupancy: it held the pixel from the end of cycle d_{j−1}(n) to s.
-        b.t.fifo_cycles += uint64_t(s - arrived + 1);
-        while (ring_s(j, uint64_t(b.head)) < arrived && b.head < int64_t(n_)) ++b.head;
-        b.t.fifo_peak = std::max(b.t.fifo_peak, n_ + 1 - uint64_t(b.head));
         const uint32_t w = b.work.at(i);
-        o = w > 0 ? int64_t(b.timing.ii * w) : 1;
-        f = w > 0 ? s + int64_t(b.timing.ii * (w - 1) + b.timing.latency) : s + 1;
+        s = span_block(b, n_, w, arrived);
+        f = w > 0 ? b.free - b.ii + b.latency : s + 1;
       }
-      b.t.add_busy(s, uint64_t(o));
-      b.free = s + o;
       int64_t d = std::max(f, b.t.last + 1);
-      if (b.next_depth > 0) d = std::max(d, ring_s(j + 1, n_ - uint64_t(b.next_depth)) + 1);
-      ring_s(j, n_) = s;
-      ring_d(j, n_) = d;
+      if (b.next_s) d = std::max(d, b.next_s[(n_ - uint64_t(b.next_depth)) & ring_mask_] + 1);
+      b.s[slot] = s;
+      b.d[slot] = d;
       b.t.last = d;
       if (keep_times) times_[j][size_t(i)] = {s, d};
       arrived = d + 1;

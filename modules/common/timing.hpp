@@ -98,6 +98,8 @@ class TimingLog {
 class PixelLine {
  public:
   explicit PixelLine(std::vector<Timing> blocks);
+  PixelLine(const PixelLine&) = delete;  // its blocks point into its rings
+  PixelLine& operator=(const PixelLine&) = delete;
 
   // Span blocks: the work of the packet now passing (set by each block as it passes).
   void set_work(int slot, Work w) { blocks_[size_t(slot)].work = w; }
@@ -133,12 +135,15 @@ class PixelLine {
     int64_t next_depth = 0;  // the next block's FIFO depth; 0: the last block, always room
     int64_t free = 0;        // the cycle its unit can issue again
     int64_t head = 0;        // the oldest pixel still in its FIFO (for the peak)
+    int64_t ii = 1, latency = 1;
+    int64_t *s = nullptr, *d = nullptr;  // the starts and hand-overs of its last pixels (rings)
+    int64_t* next_s = nullptr;           // the next block's starts (none after the last)
     Work work;
     BlockTimes t;
   };
   struct Times { int64_t s, d; };
-  int64_t& ring_s(size_t j, uint64_t n) { return ring_[(j * 2) * ring_size_ + (n & ring_mask_)]; }
-  int64_t& ring_d(size_t j, uint64_t n) { return ring_[(j * 2 + 1) * ring_size_ + (n & ring_mask_)]; }
+  // Starts pixel n at span block b (its work w, in its FIFO from `arrived`): returns s.
+  int64_t span_block(Slot& b, uint64_t n, uint32_t w, int64_t arrived);
 
   std::vector<Slot> blocks_;
   std::vector<int64_t> ring_;  // per block: the starts, then the hand-overs of the last pixels
