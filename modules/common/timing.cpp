@@ -35,7 +35,7 @@ PixelLine::PixelLine(std::vector<Timing> blocks) {
   ring_size_ = ring_above(reach);
   ring_mask_ = ring_size_ - 1;
   // −1: a pixel before the first, handed on and started "before cycle 0".
-  ring_.assign(blocks_.size() * 2 * ring_size_, -1);
+  ring_.assign((blocks_.size() * 2 + 1) * ring_size_, -1);
   for (size_t j = 0; j < blocks_.size(); ++j) {
     Slot& b = blocks_[j];
     b.s = &ring_[j * 2 * ring_size_];
@@ -43,6 +43,9 @@ PixelLine::PixelLine(std::vector<Timing> blocks) {
     b.ii = int64_t(b.timing.ii), b.latency = int64_t(b.timing.latency);
   }
   for (size_t j = 0; j + 1 < blocks_.size(); ++j) blocks_[j].next_s = blocks_[j + 1].s;
+  // After the last block, a FIFO always with room: a ring of "started before cycle 0".
+  blocks_.back().next_s = &ring_[blocks_.size() * 2 * ring_size_];
+  blocks_.back().next_depth = 1;
   times_.assign(blocks_.size(), std::vector<Times>(64));
 }
 
@@ -63,58 +66,65 @@ void PixelLine::walk_hidden(uint64_t steps) {
   r.free += int64_t(cycles);
 }
 
-// Pixel n at block j (timing.hpp's recurrence); `arrived` = d_{j−1}(n) + 1.
-inline int64_t PixelLine::span_block(Slot& b, uint64_t n, uint32_t w, int64_t arrived) {
-  const int64_t room = b.d[(n - uint64_t(b.capacity)) & ring_mask_] + 1;  // a register free
-  const int64_t s = std::max({arrived, b.free, room});
-  // Waiting while every register is full is blocked; the rest, starved.
-  const int64_t blocked_until = std::min(std::max(room, b.free), s);
-  b.t.blocked += uint64_t(blocked_until - b.free);
-  b.t.starved += uint64_t(s - blocked_until);
-  // FIFO occupancy: it held the pixel from the end of cycle d_{j−1}(n) to s.
-  b.t.fifo_cycles += uint64_t(s - arrived + 1);
-  while (b.head < int64_t(n) && b.s[uint64_t(b.head) & ring_mask_] < arrived) ++b.head;
-  b.t.fifo_peak = std::max(b.t.fifo_peak, n + 1 - uint64_t(b.head));
-  const int64_t o = w > 0 ? b.ii * int64_t(w) : 1;
-  b.t.add_busy(s, uint64_t(o));
-  b.free = s + o;
-  return s;
-}
-
 void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before) {
   const int count = p.count;
   walk_hidden(hidden_before);
   if (keep_times && times_[0].size() < size_t(count))
     for (auto& t : times_) t.resize(size_t(count));
   const size_t blocks = blocks_.size();
+  for (size_t j = 1; j < blocks; ++j) {  // each block's work as an array: a load a pixel, no branch
+    Slot& b = blocks_[j];
+    if (b.work.per_pixel) {
+      b.w = b.work.per_pixel;
+    } else {
+      if (b.uniform[0] != b.work.each) std::fill(std::begin(b.uniform), std::end(b.uniform), uint16_t(b.work.each));
+      b.w = b.uniform;
+    }
+  }
   for (int i = 0; i < count; ++i, ++n_) {
     const uint64_t slot = n_ & ring_mask_;
-    int64_t arrived = 0;  // d_{j−1}(n) + 1
-    for (size_t j = 0; j < blocks; ++j) {
+    // The raster: the walk has reached the pixel (a step of its own) and a register is free.
+    Slot& r = blocks_[0];
+    int64_t s = std::max(r.free, r.d[(n_ - uint64_t(r.capacity)) & ring_mask_] + 1);
+    r.t.blocked += uint64_t(s - r.free);
+    r.t.add_busy(s, uint64_t(r.ii));
+    r.free = s + r.ii;
+    int64_t d = std::max({s + r.latency, r.t.last + 1, r.next_s[(n_ - uint64_t(r.next_depth)) & ring_mask_] + 1});
+    r.s[slot] = s, r.d[slot] = d, r.t.last = d;
+    if (keep_times) times_[0][size_t(i)] = {s, d};
+    for (size_t j = 1; j < blocks; ++j) {  // the span blocks, timing.hpp's recurrence
       Slot& b = blocks_[j];
-      int64_t s, f;
-      if (j == 0) {  // the raster: the walk has reached the pixel (a step of its own), a register is free
-        s = std::max(b.free, b.d[(n_ - uint64_t(b.capacity)) & ring_mask_] + 1);
-        b.t.blocked += uint64_t(s - b.free);
-        b.t.add_busy(s, uint64_t(b.ii));
-        b.free = s + b.ii;
-        f = s + b.latency;
-      } else {
-        const uint32_t w = b.work.at(i);
-        s = span_block(b, n_, w, arrived);
-        f = w > 0 ? b.free - b.ii + b.latency : s + 1;
-      }
-      int64_t d = std::max(f, b.t.last + 1);
-      if (b.next_s) d = std::max(d, b.next_s[(n_ - uint64_t(b.next_depth)) & ring_mask_] + 1);
-      b.s[slot] = s;
-      b.d[slot] = d;
-      b.t.last = d;
+      const int64_t arrived = d + 1;  // in its FIFO since the cycle before
+      const int64_t room = b.d[(n_ - uint64_t(b.capacity)) & ring_mask_] + 1;  // a register free
+      s = std::max(arrived, std::max(b.free, room));
+      b.t.blocked += uint64_t(std::max<int64_t>(room - b.free, 0));  // every register full
+      // Its FIFO held the pixel from the end of cycle d_{j−1}(n) to s; the peak: the pixels
+      // in it once this one came in.
+      b.t.fifo_cycles += uint64_t(s - d);
+      while (b.head < int64_t(n_) && b.s[uint64_t(b.head) & ring_mask_] < arrived) ++b.head;
+      b.t.fifo_peak = std::max(b.t.fifo_peak, n_ + 1 - uint64_t(b.head));
+      const uint32_t w = b.w[i];
+      const int64_t o = std::max<int64_t>(b.ii * int64_t(w), 1);  // 1: bypassed
+      b.t.add_busy(s, uint64_t(o));
+      b.free = s + o;
+      const int64_t f = b.free + (w > 0 ? b.latency - b.ii : 0);
+      d = std::max({f, b.t.last + 1, b.next_s[(n_ - uint64_t(b.next_depth)) & ring_mask_] + 1});
+      b.s[slot] = s, b.d[slot] = d, b.t.last = d;
       if (keep_times) times_[j][size_t(i)] = {s, d};
-      arrived = d + 1;
     }
   }
   if (log_) log_->pixels(p, hidden_before, *this);
   for (TimedObserver* o : observers_) o->timed(p);
+}
+
+void PixelLine::settle() {
+  // A span block waits s − (the cycle its unit was free) before each pixel; summed over
+  // its pixels that telescopes to (its last issue's end − its busy cycles). What it did
+  // not spend blocked it spent starved.
+  for (size_t j = 1; j < blocks_.size(); ++j) {
+    BlockTimes& t = blocks_[j].t;
+    t.starved = uint64_t(blocks_[j].free) - t.busy - t.blocked;
+  }
 }
 
 int64_t PixelLine::end() const {

@@ -111,6 +111,8 @@ class PixelLine {
   // Times the pixels of packet `p` once every block has seen it; `hidden_before`: the
   // steps walked before its first pixel. Then tells the observers and the log.
   void sweep(const SpanPacket& p, uint64_t hidden_before);
+  // At the pass's end: the span blocks' starved cycles (from their busy and blocked ones).
+  void settle();
   void watch(TimedObserver* o) { observers_.push_back(o), keep_times = true; }
   void set_log(TimingLog* log) { log_ = log, keep_times = keep_times || log; }
   TimingLog* log() const { return log_; }
@@ -132,18 +134,18 @@ class PixelLine {
   struct Slot {
     Timing timing;
     int64_t capacity = 1;
-    int64_t next_depth = 0;  // the next block's FIFO depth; 0: the last block, always room
+    int64_t next_depth = 0;  // the next block's FIFO depth
     int64_t free = 0;        // the cycle its unit can issue again
     int64_t head = 0;        // the oldest pixel still in its FIFO (for the peak)
     int64_t ii = 1, latency = 1;
     int64_t *s = nullptr, *d = nullptr;  // the starts and hand-overs of its last pixels (rings)
-    int64_t* next_s = nullptr;           // the next block's starts (none after the last)
+    int64_t* next_s = nullptr;           // the next block's starts (after the last: always room)
     Work work;
+    const uint16_t* w = nullptr;         // the packet's work, per pixel
+    uint16_t uniform[kSpanMax] = {};     // the same work for every pixel, as an array
     BlockTimes t;
   };
   struct Times { int64_t s, d; };
-  // Starts pixel n at span block b (its work w, in its FIFO from `arrived`): returns s.
-  int64_t span_block(Slot& b, uint64_t n, uint32_t w, int64_t arrived);
 
   std::vector<Slot> blocks_;
   std::vector<int64_t> ring_;  // per block: the starts, then the hand-overs of the last pixels

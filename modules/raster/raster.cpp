@@ -19,7 +19,7 @@ BlockStats Raster::stats() const {
 void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
   if (is_pass_end(trans)) {
     PassEnd& e = *reinterpret_cast<PassEnd*>(trans.get_data_ptr());
-    if (line_) e.cycle = std::max(e.cycle, uint64_t(line_->end()));
+    if (line_) line_->settle(), e.cycle = std::max(e.cycle, uint64_t(line_->end()));
     return out->b_transport(trans, delay);
   }
   const TriangleSetup& t = *reinterpret_cast<const TriangleSetup*>(trans.get_data_ptr());
