@@ -69,6 +69,7 @@ void finish_cells(const core::ParallaxSettings& s, const ParallaxMaps& m, T& x, 
   const T t = T(march.t);
   x += t * dx, y += t * dy, z += t * dz;
   r.iterations += march.cells;
+  r.cells += march.cells;
   r.fetches += 4 * march.cells;
   if (ops) *ops += kOpsCell * uint64_t(march.cells);
 }
@@ -280,8 +281,8 @@ bool ParallaxKernel::needed(const core::Scene& scene) {
   return false;
 }
 
-ParallaxKernel::ParallaxKernel(const core::Scene& scene, core::NumberFormat format)
-    : scene_(scene), numbers_(format) {
+ParallaxKernel::ParallaxKernel(const core::Scene& scene, core::NumberFormat format, int64_t cell_cycles)
+    : scene_(scene), numbers_(format), cell_cycles_(cell_cycles) {
   maps_.resize(scene.materials.size());
   for (const auto& o : scene.objects) {
     const core::Material& m = scene.materials[size_t(o.material)];
@@ -321,7 +322,9 @@ void ParallaxKernel::process(SpanPacket& p) {
     p.uvp[1][i] = moved ? v - (r.y - y0) / H : v;
     p.iterations[i] = float(r.iterations);
     iterations += uint64_t(r.iterations);
-    work_[i] = uint16_t(std::clamp(r.iterations, 1, 65535));
+    // A cell test takes cell_cycles_, any other iteration one; a pixel at least one.
+    const int64_t cycles = int64_t(r.iterations - r.cells) + int64_t(r.cells) * cell_cycles_;
+    work_[i] = uint16_t(std::clamp<int64_t>(cycles, 1, 65535));
   }
   ops_ += Ops{/*add*/ 5, /*mul*/ 5} * uint64_t(p.count);  // uv and the tangent-space eye vector, per pixel
   if (p.count > 0) ops_ += Ops{/*add*/ 10, /*mul*/ 10};   // five plane seeds

@@ -43,6 +43,7 @@ struct ParallaxTrace {
   int iterations = 0;
   int fetches = 0;     // texels read
   int skips = 0;       // distance, cone: the iterations that skipped empty space (the rest tested cells)
+  int cells = 0;       // of the iterations, the exact per-cell tests (distance, cone: the finish)
 };
 // Below this distance to the relief (voxels), skipping stops and the exact cells finish.
 constexpr float kParallaxNear = 0.5f;
@@ -59,12 +60,13 @@ ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps
 class ParallaxKernel {
  public:
   // The tracer runs in `format` (pipeline.parallax.format).
-  explicit ParallaxKernel(const core::Scene& scene, core::NumberFormat format = {});
+  // `cell_cycles`: the cycles of an exact cell test (one a step or read).
+  explicit ParallaxKernel(const core::Scene& scene, core::NumberFormat format = {}, int64_t cell_cycles = 1);
   static bool needed(const core::Scene& scene);
 
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
-  Work work(const SpanPacket&) const { return {work_, 0}; }  // an iteration a cycle (at least one)
+  Work work(const SpanPacket&) const { return {work_, 0}; }  // an iteration a cycle, a cell test cell_cycles
   bool bypass(const SpanPacket& p) const { return p.tri->material->path != core::ShadingPath::Parallax; }
 
   double precompute_seconds() const { return precompute_s_; }
@@ -84,6 +86,7 @@ class ParallaxKernel {
   std::vector<std::unique_ptr<ParallaxMaps>> maps_;  // by material index
   uint64_t iterations_ = 0;
   uint16_t work_[kSpanMax];
+  int64_t cell_cycles_ = 1;
   NumberContext numbers_;
   uint64_t nonfinite_ = 0;
   double precompute_s_ = 0;

@@ -39,6 +39,9 @@ PipelineDecl standard_pipeline() {
       {"div", 11, 3, "divider"},
       {"sqrt", 12, 3, "square root"},
       {"rsqrt_table", 4, 1, "reciprocal square root estimate (table)"},
+      // No x86 instruction: assumed a table and a polynomial step, as the estimate above.
+      {"log2", 4, 1, "base-2 logarithm (the specular power)"},
+      {"exp2", 4, 1, "base-2 exponential (the specular power)"},
   };
   for (const auto& u : units) {
     d.settings.push_back({std::string("unit.") + u.name + ".latency", u.latency, {}, 1, 10000,
