@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Checks a traced VCD for causality (docs/inspecting.md): every pixel a block hands on
-must reach the next traced block no earlier than (1 + that block's latency) cycles after
-(it waits a cycle in the FIFO, then the block's latency). Prints the pairs checked and
+(valid and ready high) must be handed on by the next traced block no earlier than
+(1 + that block's latency) cycles after (it waits a cycle in the FIFO, then the block's
+latency). Prints the pairs checked and
 those that break it, and those where a block shows the pixel before the block before it
 did (an overtake). Exit 1 if any breaks it.
 
@@ -14,15 +15,17 @@ import sys
 
 
 def read_vcd(path):
-    """{block: {(x, y, triangle): time}} for each rise or change of a block's pixel."""
+    """{block: {(x, y, triangle): time}}: when each block handed each pixel on (valid and,
+    where the block has one, ready high)."""
     ids, scope, seen = {}, [], {}
     values, changed = {}, set()
     now = None
+    stalled = [0]  # ps with some block's valid high and ready low
 
     def flush():
         for block in changed:
             v = values.get(block, {})
-            if v.get("valid") == 1:
+            if v.get("valid") == 1 and v.get("ready", 1) == 1:
                 seen.setdefault(block, {}).setdefault((v.get("x"), v.get("y"), v.get("triangle")), now)
         changed.clear()
 
@@ -36,11 +39,14 @@ def read_vcd(path):
                 scope.pop()
             elif tok == "$var":
                 _kind, _width, ident, name = next(tokens), next(tokens), next(tokens), next(tokens)
-                if name in ("valid", "x", "y", "triangle") and scope:
+                if name in ("valid", "ready", "x", "y", "triangle") and scope:
                     ids[ident] = (scope[-1], name)
             elif tok.startswith("#"):
                 flush()
-                now = int(tok[1:])
+                later = int(tok[1:])
+                if now is not None and any(v.get("valid") == 1 and v.get("ready", 1) == 0 for v in values.values()):
+                    stalled[0] += later - now
+                now = later
             elif tok[0] in "01" and tok[1:] in ids:
                 block, name = ids[tok[1:]]
                 values.setdefault(block, {})[name] = int(tok[0])
@@ -52,13 +58,13 @@ def read_vcd(path):
                     values.setdefault(block, {})[name] = int(tok[1:], 2)
                     changed.add(block)
         flush()
-    return seen
+    return seen, stalled[0]
 
 
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
-    seen = read_vcd(sys.argv[1])
+    seen, stalled = read_vcd(sys.argv[1])
     stats = json.load(open(sys.argv[2]))
     period_ps = 1e6 / stats["clock_mhz"]
     order = [b for b in stats["elaborated"] if b in seen]
@@ -76,7 +82,8 @@ def main():
                     overtakes += 1
                 if broken <= 5:
                     print(f"  pixel {pixel[:2]} of triangle {pixel[2]}: {a} at {t_a} ps, {b} at {t_b} ps")
-    print(f"{checked} block-to-block pixel pairs checked, {broken} too early, {overtakes} overtaking")
+    print(f"{checked} block-to-block pixel pairs checked, {broken} too early, {overtakes} overtaking; "
+          f"stalls shown for {stalled / period_ps:.0f} cycles (valid high, ready low)")
     sys.exit(1 if broken else 0)
 
 

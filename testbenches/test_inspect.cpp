@@ -93,13 +93,19 @@ TEST_CASE("the timeline is trace-event JSON with one slice per packet", "[inspec
   const nlohmann::json j = nlohmann::json::parse(in);  // throws if not valid JSON
   std::map<int, std::string> track;
   std::map<int, uint64_t> slices;
+  std::map<std::string, uint64_t> counters;  // FIFO occupancy samples per block
   for (const auto& e : j.at("traceEvents")) {
+    if (e.at("ph") == "C") {
+      ++counters[e.at("name")];
+      CHECK(e.at("args").at("pixels").get<uint64_t>() <= 8);  // the default FIFO depth
+    }
     if (e.at("ph") == "M" && e.at("name") == "thread_name") track[e.at("tid")] = e.at("args").at("name");
     if (e.at("ph") == "X") {
       ++slices[e.at("tid")];
       CHECK(e.at("dur").get<double>() >= 0);
       CHECK(e.at("args").contains("pixels"));
       CHECK(e.at("args").contains("triangle"));
+      CHECK(e.at("args").contains("stalled_cycles"));
     }
   }
   REQUIRE(track.size() == r.blocks.size());
@@ -109,6 +115,8 @@ TEST_CASE("the timeline is trace-event JSON with one slice per packet", "[inspec
     // setup: one slice per triangle; the raster and the span blocks: one per packet.
     const uint64_t expected = b < 1 ? r.triangles_drawn : r.blocks[b].stats.packets;
     CHECK(slices[int(b)] == expected);
+    // A FIFO sample for each pixel a span block took.
+    if (b >= 2) CHECK(counters[r.blocks[b].name + " FIFO"] == r.blocks[b].stats.pixels);
   }
 }
 

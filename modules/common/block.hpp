@@ -102,12 +102,18 @@ class BlockInfo : public TimedObserver {
       for (int i = 0; i < p.count; ++i) {
         if (!tracer_->region().contains(p.x0 + i, p.y)) continue;
         values(i, v);
-        tracer_->record(probe_, uint64_t(line.handed(slot, i)), p.x0 + i, p.y, p.tri->id, v);
+        tracer_->record(probe_, uint64_t(line.valid_from(slot, i)), uint64_t(line.handed(slot, i)), p.x0 + i, p.y,
+                        p.tri->id, v);
       }
     }
     if (timeline_ && (!filter_ || filter_->covers(p.y, p.x0, p.x0 + p.count, p.tri->id))) {
       const int64_t first = line.start(slot, 0), last = line.handed(slot, p.count - 1);
-      timeline_->add(track_, uint64_t(first), uint64_t(last + 1 - first), uint32_t(p.count), p.tri->id);
+      uint64_t stalled = 0;  // cycles its pixels waited, done, for room downstream
+      for (int i = 0; i < p.count; ++i) stalled += uint64_t(line.handed(slot, i) - line.valid_from(slot, i));
+      timeline_->add(track_, uint64_t(first), uint64_t(last + 1 - first), uint32_t(p.count), p.tri->id, stalled);
+      if (slot > 0)  // its FIFO as each pixel came in
+        for (int i = 0; i < p.count; ++i)
+          timeline_->count(track_, uint64_t(line.handed(slot - 1, i)), uint32_t(line.fifo_after(slot, i)));
     }
   }
 };

@@ -22,7 +22,10 @@ void Timeline::write(const std::string& path, const std::vector<std::string>& na
       out << ",\n{\"ph\": \"X\", \"pid\": 1, \"tid\": " << s.block << ", \"name\": \"" << names[s.block]
           << "\", \"ts\": " << double(s.start) / clock_mhz << ", \"dur\": " << double(s.busy) / clock_mhz
           << ", \"args\": {\"pixels\": " << s.pixels << ", \"cycles\": " << s.busy << ", \"start_cycle\": "
-          << s.start << ", \"triangle\": " << s.triangle << "}}";
+          << s.start << ", \"triangle\": " << s.triangle << ", \"stalled_cycles\": " << s.stalled << "}}";
+    for (const auto& c : counts_)
+      out << ",\n{\"ph\": \"C\", \"pid\": 1, \"name\": \"" << names[c.block] << " FIFO\", \"ts\": "
+          << double(c.cycle) / clock_mhz << ", \"args\": {\"pixels\": " << c.fifo << "}}";
     out << "\n]}\n";
     if (!out) throw std::runtime_error(path + ": cannot write the timeline");
   });

@@ -1,7 +1,8 @@
 #pragma once
-// The transaction timeline: one slice per packet per block (per triangle for setup
-// and raster), written as Chrome trace-event JSON, which Perfetto UI and
-// chrome://tracing open: one track per block, in pipeline order.
+// The transaction timeline: one slice per packet per block (per triangle for setup),
+// with the cycles its pixels stalled, and each block's FIFO occupancy as a counter,
+// written as Chrome trace-event JSON, which Perfetto UI opens: one track per block, in
+// pipeline order.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -14,16 +15,24 @@ class Timeline {
     uint32_t block;      // index into the names given to write()
     uint64_t start, busy;  // cycles
     uint32_t pixels, triangle;
+    uint64_t stalled;      // cycles its pixels waited, done, for room downstream
   };
-  void add(uint32_t block, uint64_t start, uint64_t busy, uint32_t pixels, uint32_t triangle) {
-    slices_.push_back({block, start, busy, pixels, triangle});
+  struct Count {
+    uint32_t block;
+    uint64_t cycle;
+    uint32_t fifo;  // pixels in the block's input FIFO
+  };
+  void add(uint32_t block, uint64_t start, uint64_t busy, uint32_t pixels, uint32_t triangle, uint64_t stalled = 0) {
+    slices_.push_back({block, start, busy, pixels, triangle, stalled});
   }
+  void count(uint32_t block, uint64_t cycle, uint32_t fifo) { counts_.push_back({block, cycle, fifo}); }
   const std::vector<Slice>& slices() const { return slices_; }
   // Writes the JSON (through a temporary and a rename); times in µs at `clock_mhz`.
   void write(const std::string& path, const std::vector<std::string>& block_names, double clock_mhz) const;
 
  private:
   std::vector<Slice> slices_;
+  std::vector<Count> counts_;
 };
 
 }  // namespace shadetlm::modules

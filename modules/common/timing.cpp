@@ -90,8 +90,8 @@ void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before) {
     r.t.add_busy(s, uint64_t(r.ii));
     r.free = s + r.ii;
     int64_t d = std::max({s + r.latency, r.t.last + 1, r.next_s[(n_ - uint64_t(r.next_depth)) & ring_mask_] + 1});
+    if (keep_times) times_[0][size_t(i)] = {s, d, std::max(s + r.latency, r.t.last + 1), 0};
     r.s[slot] = s, r.d[slot] = d, r.t.last = d;
-    if (keep_times) times_[0][size_t(i)] = {s, d};
     for (size_t j = 1; j < blocks; ++j) {  // the span blocks, timing.hpp's recurrence
       Slot& b = blocks_[j];
       const int64_t arrived = d + 1;  // in its FIFO since the cycle before
@@ -108,9 +108,10 @@ void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before) {
       b.t.add_busy(s, uint64_t(o));
       b.free = s + o;
       const int64_t f = b.free + (w > 0 ? b.latency - b.ii : 0);
-      d = std::max({f, b.t.last + 1, b.next_s[(n_ - uint64_t(b.next_depth)) & ring_mask_] + 1});
+      const int64_t valid = std::max(f, b.t.last + 1);
+      d = std::max(valid, b.next_s[(n_ - uint64_t(b.next_depth)) & ring_mask_] + 1);
+      if (keep_times) times_[j][size_t(i)] = {s, d, valid, n_ + 1 - uint64_t(b.head)};
       b.s[slot] = s, b.d[slot] = d, b.t.last = d;
-      if (keep_times) times_[j][size_t(i)] = {s, d};
     }
   }
   if (log_) log_->pixels(p, hidden_before, *this);

@@ -118,9 +118,13 @@ class PixelLine {
   TimingLog* log() const { return log_; }
   Work work(int slot) const { return blocks_[size_t(slot)].work; }
 
-  // The times of the packet swept last: start and hand-over of pixel i at block j.
+  // The times of the packet swept last, pixel i at block j: its start, the cycle it was
+  // at the block's output (valid: done, the pixel before it gone), its hand-over (a
+  // stall between the two), and its FIFO's pixels once it came in (j > 0).
   int64_t start(int j, int i) const { return times_[size_t(j)][size_t(i)].s; }
+  int64_t valid_from(int j, int i) const { return times_[size_t(j)][size_t(i)].v; }
   int64_t handed(int j, int i) const { return times_[size_t(j)][size_t(i)].d; }
+  uint64_t fifo_after(int j, int i) const { return times_[size_t(j)][size_t(i)].q; }
   bool keep_times = false;  // set to fill them (inspection, the timing log)
 
   // The first cycle at which every block of the pass is done.
@@ -145,7 +149,10 @@ class PixelLine {
     uint16_t uniform[kSpanMax] = {};     // the same work for every pixel, as an array
     BlockTimes t;
   };
-  struct Times { int64_t s, d; };
+  struct Times {
+    int64_t s, d, v;
+    uint64_t q;
+  };
 
   std::vector<Slot> blocks_;
   std::vector<int64_t> ring_;  // per block: the starts, then the hand-overs of the last pixels

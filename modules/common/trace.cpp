@@ -34,6 +34,7 @@ int Tracer::add_probe(const std::string& block, const std::vector<std::string>& 
     info.is_real.push_back(real);
   };
   add(probe->valid, "valid", false);
+  add(probe->ready, "ready", false);
   add(probe->x, "x", false);
   add(probe->y, "y", false);
   add(probe->triangle, "triangle", false);
@@ -43,13 +44,16 @@ int Tracer::add_probe(const std::string& block, const std::vector<std::string>& 
   return int(probes_.size() - 1);
 }
 
-void Tracer::record(int probe, uint64_t cycle, int x, int y, uint32_t triangle, const double* values) {
-  Event e{cycle, 1, seq_++, probe, x, y, triangle, {}};
+void Tracer::record(int probe, uint64_t valid, uint64_t handed, int x, int y, uint32_t triangle,
+                    const double* values) {
+  Event e{valid, 1, seq_++, probe, x, y, triangle, {}};
   std::copy(values, values + probes_[probe]->values.size(), e.values.begin());
   queue_.push(e);
-  queue_.push({cycle + 1, 0, seq_++, probe, 0, 0, 0, {}});  // valid for one cycle
+  queue_.push({handed, 2, seq_++, probe, 0, 0, 0, {}});      // the handshake
+  queue_.push({handed + 1, 0, seq_++, probe, 0, 0, 0, {}});  // then gone
+  const uint64_t cycle = valid;
   first_ = records_ == 0 ? cycle : std::min(first_, cycle);
-  last_ = std::max(last_, cycle + 1);
+  last_ = std::max(last_, handed + 1);
   ++records_;
   // Wake the replay only if this record comes before what it waits for.
   if (cycle < next_wake_) wake_.notify(sc_core::SC_ZERO_TIME);
@@ -89,7 +93,9 @@ void Tracer::run() {
       const Event& e = queue_.top();
       Probe& p = *probes_[e.probe];
       if (e.kind == 0) {
-        p.valid = false;
+        p.valid = p.ready = false;
+      } else if (e.kind == 2) {
+        p.ready = true;
       } else {
         p.valid = true;
         p.x = e.x;

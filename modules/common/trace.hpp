@@ -1,9 +1,10 @@
 #pragma once
 // Waveforms of the blocks (docs/inspecting.md). A block with a probe records, for each
-// pixel of a traced region, its outputs at the cycle the timing model puts them; the
-// Tracer replays the records in time order into variables written with sc_trace, so a
-// VCD shows each block's valid, x, y, triangle and values at the pixels' simulated
-// times. Outside the region a block pays one test per packet.
+// pixel of a traced region, its outputs from the cycle the timing model puts them at
+// its output to the cycle it hands them on; the Tracer replays the records in time
+// order into variables written with sc_trace, so a VCD shows each block's valid, ready
+// (low while the next FIFO is full: a stall), x, y, triangle and values at the pixels'
+// simulated times. Outside the region a block pays one test per packet.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -43,8 +44,9 @@ class Tracer : public sc_core::sc_module {
   // During elaboration: a block's signals (valid, x, y, triangle, then `values`).
   int add_probe(const std::string& block, const std::vector<std::string>& values);
   const TraceRegion& region() const { return region_; }
-  // A pixel's outputs at `cycle` (values in the order of add_probe).
-  void record(int probe, uint64_t cycle, int x, int y, uint32_t triangle, const double* values);
+  // A pixel at a block's output (values in the order of add_probe): valid from cycle
+  // `valid`, handed on at `handed` (ready high then; low before it: a stall).
+  void record(int probe, uint64_t valid, uint64_t handed, int x, int y, uint32_t triangle, const double* values);
   // The source has sent its last transaction: stop once the records are replayed.
   void source_done();
 
@@ -61,7 +63,7 @@ class Tracer : public sc_core::sc_module {
 
  private:
   struct Probe {
-    bool valid = false;
+    bool valid = false, ready = false;
     int x = 0, y = 0;
     unsigned triangle = 0;
     std::vector<double> values;
@@ -69,7 +71,7 @@ class Tracer : public sc_core::sc_module {
   static constexpr int kMaxValues = 8;  // per probe
   struct Event {
     uint64_t cycle;
-    int kind;  // 0 clears valid, 1 sets a pixel (clears first at the same cycle)
+    int kind;  // 0 clears valid and ready, 1 sets a pixel (clears first at the same cycle), 2 sets ready
     uint64_t seq;
     int probe, x, y;
     uint32_t triangle;

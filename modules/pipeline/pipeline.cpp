@@ -251,7 +251,7 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
 void write_gtkw(const std::string& path, const std::string& vcd, const std::vector<Tracer::ProbeInfo>& probes,
                 double from_ps, double to_ps) {
   // GTKWave's save format: "@<flags in hex>" sets how the following signals are
-  // drawn, "-text" is a comment line. 28 = binary, right-justified (a 1-bit valid);
+  // drawn, "-text" is a comment line. 28 = binary, right-justified (1-bit valid, ready);
   // 24 = decimal; 8420 = analog step, signed, right-justified (real values).
   core::write_atomically(path, [&](const std::string& tmp) {
     std::ofstream out(tmp);
@@ -268,7 +268,7 @@ void write_gtkw(const std::string& path, const std::string& vcd, const std::vect
     for (const auto& p : probes) {
       out << "@800200\n-" << p.block << "\n";  // a group per block
       for (size_t k = 0; k < p.names.size(); ++k) {
-        if (k == 0) out << "@28\n" << p.names[k] << "\n";
+        if (k <= 1) out << "@28\n" << p.names[k] << "\n";  // valid, ready
         else if (!p.is_real[k]) out << "@24\n" << p.names[k] << "[31:0]\n";
         else out << "@8420\n" << p.names[k] << "\n@20000\n-\n";  // analog, one blank row of height
       }
