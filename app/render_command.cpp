@@ -160,6 +160,13 @@ void check_before_simulation(const RenderOptions& opt, const core::Scene& scene,
   check_writable(gtkw_path_of(inspect.vcd), "--vcd");
   check_writable(inspect.timeline, "--timeline");
   check_writable(opt.timing_log, "--timing-log");
+  // The log is kept in memory during the run (about 100 bytes a pixel and block): for
+  // the small frames the timing check is for.
+  constexpr int64_t kMaxLoggedPixels = 1 << 20;
+  if (!opt.timing_log.empty() && int64_t(scene.camera.width) * scene.camera.height > kMaxLoggedPixels)
+    throw core::InputError("--timing-log", opt.timing_log,
+                           "a timing log is for frames of at most 1048576 pixels (the scene's camera.resolution is " +
+                               std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height) + ")");
 }
 
 // Should a later write fail, the inspection files of this run go too.
@@ -199,6 +206,7 @@ void write_outputs(const RenderOptions& opt, const modules::RenderResult& r, con
   // Frame, preview and statistics appear together or not at all: the
   // statistics go to a temporary first and are renamed after the frame.
   const std::string stats_tmp = opt.stats.empty() ? "" : core::temporary_path_for(opt.stats);
+  bool log_written = false;
   try {
     if (!stats_tmp.empty()) {
       std::ofstream out(stats_tmp);
@@ -212,10 +220,11 @@ void write_outputs(const RenderOptions& opt, const modules::RenderResult& r, con
         out.flush();
         if (!out) throw std::runtime_error(opt.timing_log + ": cannot write the timing log");
       });
+    log_written = !opt.timing_log.empty();
     write_frame(frame, opt.output, opt.preview, opt.heat_map, opt.heat_max);
   } catch (...) {
     if (!stats_tmp.empty()) core::remove_quietly(stats_tmp);
-    if (!opt.timing_log.empty()) core::remove_quietly(opt.timing_log);
+    if (log_written) core::remove_quietly(opt.timing_log);
     take_back_inspection(inspect);
     throw;
   }
@@ -226,7 +235,7 @@ void write_outputs(const RenderOptions& opt, const modules::RenderResult& r, con
       core::remove_quietly(opt.output);
       if (!opt.preview.empty()) core::remove_quietly(opt.preview);
       if (!opt.heat_map.empty()) core::remove_quietly(opt.heat_map);
-      if (!opt.timing_log.empty()) core::remove_quietly(opt.timing_log);
+      if (log_written) core::remove_quietly(opt.timing_log);
       take_back_inspection(inspect);
       throw;
     }

@@ -6,12 +6,15 @@
 #  3. two normalization units compared in cycles and in error (every normalize mode on
 #     a scene: frame cycles, normalize's latency and II, RGB error against the golden
 #     model; a table, and out/architect/normalize-units.png).
-# Usage: scripts/architect.sh [SCENE]   (default: golden/sphere/scene.json)
+# Usage: scripts/architect.sh [--doc] [SCENE]   (default: golden/sphere/scene.json)
+#   --doc: also put the three tables into docs/architect.md, between its markers.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh" gnuplot-nox
 bin=$root/build/app/shadetlm
 [[ -x $bin ]] || "$root/scripts/build.sh" >/dev/null
+doc=0
+[[ ${1:-} == --doc ]] && { doc=1; shift; }
 scene=${1:-$root/golden/sphere/scene.json}
 out=$root/out/architect
 mkdir -p "$out"
@@ -19,6 +22,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 spans=(normal_interp bump_fetch bump_perturb normal_mux normalize vector_interp texture_fetch lighting framebuffer parallax)
 
+report() {
 echo "## 1. The bottleneck of $(basename "$(dirname "$scene")")"
 "$bin" render "$scene" -o "$tmp/f.exr" --stats "$tmp/s.json" >/dev/null
 python3 - "$tmp/s.json" <<'PY'
@@ -29,8 +33,9 @@ print("| block | latency | ii | busy | starved | blocked | utilization | FIFO pe
 print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
 for name in s["elaborated"]:
     b = s["blocks"][name]
+    fifo = f"{b['fifo_peak']} | {b['fifo_mean']:.2f}" if "fifo_peak" in b else "— | —"  # setup, the raster: none measured
     print(f"| {name} | {b['latency']} | {b['ii']} | {b['busy_cycles']} | {b['starved_cycles']} | "
-          f"{b['blocked_cycles']} | {b['utilization']:.2f} | {b['fifo_peak']} | {b['fifo_mean']:.2f} |")
+          f"{b['blocked_cycles']} | {b['utilization']:.2f} | {fifo} |")
 PY
 
 echo
@@ -93,3 +98,19 @@ plot '$tmp/units.dat' using 4:5 with points pt 7 ps 2, '' using 4:5:1 with label
 GP
 echo
 echo "plots: $out/fifo-depth.png, $out/normalize-units.png"
+}
+report | tee "$out/architect.txt"
+if ((doc)); then
+  # Each table of the output between <!-- architect:N --> and <!-- /architect:N -->.
+  cp "$out/fifo-depth.png" "$out/normalize-units.png" "$root/docs/images/"
+  python3 - "$out/architect.txt" "$root/docs/architect.md" <<'PY'
+import re, sys
+text, doc = open(sys.argv[1]).read(), sys.argv[2]
+tables = [t.strip() for t in re.findall(r"((?:^\|.*\n)+)", text, re.M)]
+page = open(doc).read()
+for n, table in enumerate(tables, 1):
+    page = re.sub(rf"(<!-- architect:{n} -->\n).*?(\n<!-- /architect:{n} -->)", lambda m: m.group(1) + table + m.group(2),
+                  page, flags=re.S)
+open(doc, "w").write(page)
+PY
+fi

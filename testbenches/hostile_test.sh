@@ -66,6 +66,9 @@ hostile latency-zero "pipeline.lighting.latency" render neg.json --set 'pipeline
 hostile unit-zero "pipeline.unit.div.ii" render neg.json --set 'pipeline.unit.div.ii=0'
 hostile unit-huge "pipeline.unit.sqrt.latency" render neg.json --set 'pipeline.unit.sqrt.latency=99999999'
 hostile unit-text "pipeline.unit.mul.latency" render neg.json --set 'pipeline.unit.mul.latency="four"'
+# The timing log is kept in memory: large frames are refused before the run.
+hostile timing-log-huge "--timing-log" render neg.json --set 'camera.resolution=[2048,1024]' --timing-log t.log
+[[ ! -e t.log ]] && ((passes++)) || { echo "FAIL: a refused timing log was written"; ((failures++)); }
 nine='{"type": "directional", "direction": [0,-1,0]}'
 hostile too-many-lights "at most 8 lights" render neg.json --set "lights=[$nine,$nine,$nine,$nine,$nine,$nine,$nine,$nine,$nine]"
 

@@ -108,5 +108,24 @@ else
   echo "ok the causality checker catches an overtake: $(tail -1 "$tmp/c")"; ((passes++))
 fi
 
+# A timing log that is cut short, out of order or nonsense is refused: exit 2, the file
+# and line named, no crash.
+"$bin" render "$src/golden/sphere/scene.json" -o "$tmp/f.exr" --timing-log "$tmp/good.log" >/dev/null
+refuse() {  # refuse NAME TEXT: the log in $tmp/bad.log
+  "$bin" timing-check "$tmp/bad.log" >"$tmp/out" 2>&1
+  local rc=$?
+  if [[ $rc -eq 2 ]] && grep -qF -- "$2" "$tmp/out" && grep -qF "bad.log" "$tmp/out"; then
+    ((passes++))
+  else
+    echo "FAIL bad log $1: exit $rc"; sed 's/^/    /' "$tmp/out" | head -3; ((failures++))
+  fi
+}
+head -n 200 "$tmp/good.log" >"$tmp/bad.log";                           refuse cut-short "end"
+{ head -n 12 "$tmp/good.log"; echo "block late 1 1 1"; } >"$tmp/bad.log"; refuse block-late "line 13"
+sed '10s/^p \([0-9]*\) /p \1 x /' "$tmp/good.log" >"$tmp/bad.log";        refuse not-a-number "line 10"
+sed '3s/ 2 1 8$/ 2 0 8/' "$tmp/good.log" >"$tmp/bad.log";                refuse zero-ii "line 3"
+printf 'block setup 16 8 0\nblock raster 4 1 99999999999\n' >"$tmp/bad.log"; refuse huge-depth "line 2"
+echo "hello" >"$tmp/bad.log";                                         refuse unknown "unknown record"
+
 echo "$passes passed, $failures failed"
 [[ $failures -eq 0 && $passes -ge 20 ]]

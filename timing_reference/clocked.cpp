@@ -37,6 +37,7 @@ class Unit : public sc_core::sc_module {
   sc_core::sc_in<bool> clk;
   BlockStatsLine stats;
   std::vector<int64_t>* handed = nullptr;  // per item: the cycle it was handed on
+  std::vector<int64_t>* valid = nullptr;   // per item: the first cycle it was valid at the output (none: not kept)
   int64_t last = -1;
   size_t handed_count = 0;
 
@@ -63,9 +64,10 @@ class Unit : public sc_core::sc_module {
     held_.pop_front();
   }
   void drive_output(int64_t t) {
-    const bool valid = !held_.empty() && held_.front().done <= t + 1;
-    out_.valid.write(valid);
-    out_.data.write(valid ? held_.front().item : -1);
+    const bool is_valid = !held_.empty() && held_.front().done <= t + 1;
+    out_.valid.write(is_valid);
+    out_.data.write(is_valid ? held_.front().item : -1);
+    if (is_valid && valid && (*valid)[size_t(held_.front().item)] < 0) (*valid)[size_t(held_.front().item)] = t + 1;
   }
 
   BlockSpec spec_;
@@ -246,7 +248,7 @@ Measured run_clocked(const Workload& w) {
   Measured m;
   const size_t line = w.blocks.size() - 1, pixels = w.pixels.size(), triangles = w.triangles.size();
   m.start.assign(line, std::vector<int64_t>(pixels, -1));
-  m.handed = m.start;
+  m.valid = m.handed = m.start;
   m.setup_start.assign(triangles, -1);
   m.setup_handed = m.taken = m.setup_start;
 
@@ -256,12 +258,12 @@ Measured run_clocked(const Workload& w) {
   Source setup("setup", w.blocks[0], *links[0], triangles, m.setup_start);
   setup.handed = &m.setup_handed;
   Walker raster("raster", w.blocks[1], *links[0], *links[1], w, m);
-  raster.handed = &m.handed[0];
+  raster.handed = &m.handed[0], raster.valid = &m.valid[0];
   std::vector<std::unique_ptr<SpanUnit>> units;
   for (size_t j = 1; j < line; ++j) {
     units.push_back(std::make_unique<SpanUnit>(w.blocks[j + 1].name.c_str(), w.blocks[j + 1], j - 1, *links[j],
                                                *links[j + 1], w, m.start[j]));
-    units.back()->handed = &m.handed[j];
+    units.back()->handed = &m.handed[j], units.back()->valid = &m.valid[j];
   }
   setup.clk(clk), raster.clk(clk);
   for (auto& u : units) u->clk(clk);
@@ -315,12 +317,18 @@ bool compare(const Workload& w, const Measured& m, std::string& report, size_t s
     for (size_t j = 0; j < p.start.size(); ++j) {
       const std::string name = "pixel (" + std::to_string(p.x) + ", " + std::to_string(p.y) + ") at " + w.blocks[j + 1].name;
       check(p.start[j], m.start[j][n], name + ", start");
+      check(p.valid[j], m.valid[j][n], name + ", valid at the output");
       check(p.handed[j], m.handed[j][n], name + ", hand-over");
     }
   }
   check(w.end, m.end, "the pass's end");
+  if (w.stats.size() != m.stats.size()) {
+    ++mismatches;
+    out << "  the log has statistics of " << w.stats.size() << " blocks, the pass " << m.stats.size() << "\n";
+  }
   for (size_t j = 0; j < w.stats.size() && j < m.stats.size(); ++j) {
     const BlockStatsLine &a = w.stats[j], &b = m.stats[j];
+    if (a.name != b.name && mismatches++ < show) out << "  statistics of " << a.name << " where " << b.name << " is\n";
     check(a.busy, b.busy, a.name + " busy cycles");
     check(a.starved, b.starved, a.name + " starved cycles");
     check(a.blocked, b.blocked, a.name + " blocked cycles");

@@ -13,7 +13,7 @@
 namespace shadetlm::timing_reference {
 
 struct Measured {
-  std::vector<std::vector<int64_t>> start, handed;        // [raster, span blocks…][pixel]
+  std::vector<std::vector<int64_t>> start, valid, handed;  // [raster, span blocks…][pixel]
   std::vector<int64_t> setup_start, setup_handed, taken;  // per triangle
   std::vector<BlockStatsLine> stats;                      // setup, the raster, the span blocks
   int64_t end = 0;       // the first cycle at which every block is done

@@ -24,7 +24,11 @@ Workload read_workload(const std::string& path) {
     if (kind == "block") {
       BlockSpec b;
       s >> b.name >> b.latency >> b.ii >> b.depth;
-      if (!s || b.latency < 1 || b.ii < 1 || b.depth < 0) fail("expected: block <name> <latency ≥ 1> <ii ≥ 1> <depth>");
+      constexpr int64_t kMost = 1000000;
+      if (!s || b.latency < 1 || b.ii < 1 || b.depth < 0 || b.latency > kMost || b.ii > kMost || b.depth > kMost)
+        fail("expected: block <name> <latency> <ii> <depth>, latency and ii in 1 … 1000000, depth in 0 … 1000000");
+      if (!w.triangles.empty()) fail("a block after the first triangle");
+      if (w.blocks.size() >= 2 && b.depth < 1) fail("a span block's FIFO depth must be at least 1");
       w.blocks.push_back(b);
     } else if (kind == "t") {
       Triangle t;
@@ -40,14 +44,20 @@ Workload read_workload(const std::string& path) {
       s >> p.x >> p.y >> p.hidden;
       const size_t line_blocks = w.blocks.size() - 1;
       p.work.resize(line_blocks - 1);
-      p.start.resize(line_blocks), p.handed.resize(line_blocks);
+      p.start.resize(line_blocks), p.valid.resize(line_blocks), p.handed.resize(line_blocks);
       for (auto& x : p.work) s >> x;
-      for (size_t j = 0; j < line_blocks; ++j) s >> p.start[j] >> p.handed[j];
-      if (!s || p.hidden < 0) fail("expected: p <x> <y> <hidden> <work…> <start handed…>");
+      for (size_t j = 0; j < line_blocks; ++j) s >> p.start[j] >> p.valid[j] >> p.handed[j];
+      std::string extra;
+      if (!s || p.hidden < 0 || p.hidden > 1000000000 || (s >> extra))
+        fail("expected: p <x> <y> <hidden> <a work per span block> <start valid handed per line block>");
+      for (uint32_t x : p.work)
+        if (x > 65535) fail("a pixel's work is at most 65535 units");
       w.pixels.push_back(std::move(p));
       ++w.triangles.back().pixels;
     } else if (kind == "e") {
-      if (w.triangles.empty() || !(s >> w.triangles.back().trailing)) fail("expected: e <steps>, after a triangle");
+      if (w.triangles.empty() || !(s >> w.triangles.back().trailing) || w.triangles.back().trailing < 0 ||
+          w.triangles.back().trailing > 1000000000)
+        fail("expected: e <steps>, after a triangle");
     } else if (kind == "end") {
       if (!(s >> w.end)) fail("expected: end <cycle>");
     } else if (kind == "stats") {
@@ -60,6 +70,7 @@ Workload read_workload(const std::string& path) {
     }
   }
   if (w.blocks.size() < 2) throw core::InputError(path, "block", "needs setup and the raster at least");
+  if (w.end < 0) throw core::InputError(path, "end", "no end record: a log cut short?");
   return w;
 }
 

@@ -18,7 +18,7 @@ struct Pixel {
   int x = 0, y = 0;
   int64_t hidden = 0;                // the raster's hidden steps just before it
   std::vector<uint32_t> work;        // per span block (units of its II; 0: bypassed)
-  std::vector<int64_t> start, handed;  // the fast model's, per line block (raster first)
+  std::vector<int64_t> start, valid, handed;  // the fast model's, per line block (raster first)
 };
 
 struct Triangle {
@@ -37,11 +37,12 @@ struct Workload {
   std::vector<BlockSpec> blocks;  // setup, the raster, the span blocks
   std::vector<Triangle> triangles;
   std::vector<Pixel> pixels;
-  int64_t end = 0;                      // the fast model's
+  int64_t end = -1;                     // the fast model's (−1: no end record)
   std::vector<BlockStatsLine> stats;    // the fast model's
 };
 
-// Reads a timing log; throws core::InputError naming the file and line.
+// Reads a timing log; throws core::InputError naming the file and line (a record out of
+// place, a number missing or out of range: latencies, IIs and depths in 1 … 1000000).
 Workload read_workload(const std::string& path);
 
 }  // namespace shadetlm::timing_reference

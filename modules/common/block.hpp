@@ -125,23 +125,6 @@ inline bool is_pass_end(const tlm::tlm_generic_payload& trans) {
   return trans.get_command() == tlm::TLM_IGNORE_COMMAND && trans.get_data_length() == sizeof(PassEnd);
 }
 
-// Forwards a transaction to `next` (a bound socket's interface; none after the last
-// block) with the delay annotation of `cycle`: its time relative to `now`, the
-// simulation time (which no blocking call along a packet's way through the blocks
-// advances, so the caller may know it without asking the kernel).
-inline void forward(tlm::tlm_fw_transport_if<>* next, tlm::tlm_generic_payload& trans, uint64_t cycle,
-                    const sc_core::sc_time& period, const sc_core::sc_time& now) {
-  if (!next) return;  // the last block
-  const sc_core::sc_time at = period * double(cycle);
-  sc_core::sc_time delay = at > now ? at - now : sc_core::SC_ZERO_TIME;
-  next->b_transport(trans, delay);
-}
-template <class Socket>
-void forward(Socket& socket, tlm::tlm_generic_payload& trans, uint64_t cycle, const sc_core::sc_time& period,
-             const sc_core::sc_time& now) {
-  forward(socket.size() > 0 ? socket.operator->() : nullptr, trans, cycle, period, now);
-}
-
 // A block's packet input: a plain TLM-2.0 target socket bound to the block, which
 // implements the forward interface itself — one virtual call a packet. (tlm_utils'
 // simple_target_socket adds a callback hop of about 30 instructions a packet and block,
@@ -176,10 +159,11 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
     const BlockTimes& t = times();
     s.busy_cycles = t.busy, s.starved_cycles = t.starved, s.blocked_cycles = t.blocked;
     s.fifo_cycles = t.fifo_cycles, s.fifo_peak = t.fifo_peak;
+    s.fifo_measured = line_ != nullptr;
     return s;
   }
   const Timing& timing() const override { return timing_; }
-  const BlockTimes& times() const override { return line_ ? line_->times(slot_) : no_times_; }
+  const BlockTimes& times() const override { return line_ ? line_->times(slot_) : alone_; }
   void join_line(PixelLine* line, int slot) override { line_ = line, slot_ = slot; }
   void keep_histogram(uint64_t cycles) override {
     if (line_) line_->times(slot_).bin_cycles = cycles;
@@ -189,9 +173,7 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
 
   void timed(const SpanPacket& p) override {  // its waveforms and timeline slice
     if (!kTracing || !line_ || p.count == 0 || !worked_) return;
-    record_timed(p, *line_, slot_, [&](int i, double* v) {
-      if (traced_) kernel_.trace(p, i, v);
-    });
+    record_timed(p, *line_, slot_, [&](int i, double* v) { std::copy(traced_values_[i], traced_values_[i] + 16, v); });
   }
 
  private:
@@ -212,6 +194,7 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
       // crosses every elaborated block of its pass.
       ++stats_.bypassed;
       if (line_) line_->set_work(slot_, Work{});
+      else count_alone(Work{}, p.count);
       worked_ = false;
       trans.set_response_status(tlm::TLM_OK_RESPONSE);
       if (packet_next_) packet_next_->b_transport(trans, delay);
@@ -229,7 +212,13 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
     kernel_.process(p);
     ++stats_.packets;
     stats_.pixels += uint64_t(p.count);
+    // The waveforms' values now: a later block may rewrite the packet's arrays (normalize
+    // its normals) before the packet is timed.
+    if (kTracing && traced_)
+      for (int i = 0; i < p.count; ++i)
+        if (tracer_->region().contains(p.x0 + i, p.y)) kernel_.trace(p, i, traced_values_[i]);
     if (line_) line_->set_work(slot_, kernel_.work(p));
+    else count_alone(kernel_.work(p), p.count);
     worked_ = true;
     trans.set_response_status(tlm::TLM_OK_RESPONSE);
     if (packet_next_) packet_next_->b_transport(trans, delay);
@@ -243,13 +232,20 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
     if (next_) next_->b_transport(trans, delay);
   }
 
+  // A block on its own (a testbench, a platform of one's own: no PixelLine) still counts
+  // its busy cycles, II · work a pixel; its times need a pipeline.
+  void count_alone(Work w, int count) {
+    for (int i = 0; i < count; ++i) alone_.busy += std::max<uint64_t>(timing_.ii * w.at(i), 1);
+  }
+
   Kernel& kernel_;
   Timing timing_;
-  PixelLine* line_ = nullptr;  // none in a testbench of the block alone: no timing
+  PixelLine* line_ = nullptr;  // none in a testbench of the block alone
   int slot_ = 0;
   bool traced_ = false, worked_ = false;  // the packet now passing: traced, not bypassed
+  double traced_values_[kSpanMax][16];    // its waveform values, for the traced pixels
   BlockStats stats_;
-  BlockTimes no_times_;
+  BlockTimes alone_;
   tlm::tlm_fw_transport_if<>* next_ = nullptr;         // the next block
   tlm::tlm_fw_transport_if<>* packet_next_ = nullptr;  // the same, unless this block ends its pass
 };

@@ -43,9 +43,11 @@ nlohmann::json RenderResult::stats_json() const {
     if (frame_cycles > 0) {  // the timing model's (docs/pipeline.md, "Timing")
       bj["starved_cycles"] = b.stats.starved_cycles;
       bj["blocked_cycles"] = b.stats.blocked_cycles;
-      bj["fifo_depth"] = b.timing.fifo_depth;
-      bj["fifo_peak"] = b.stats.fifo_peak;
-      bj["fifo_mean"] = double(b.stats.fifo_cycles) / double(frame_cycles);
+      if (b.timing.fifo_depth > 0) bj["fifo_depth"] = b.timing.fifo_depth;  // none: setup, texel_project
+      if (b.stats.fifo_measured) {  // the span blocks' (the raster's FIFO of triangles is not measured)
+        bj["fifo_peak"] = b.stats.fifo_peak;
+        bj["fifo_mean"] = double(b.stats.fifo_cycles) / double(frame_cycles);
+      }
     }
     if (!b.ranges.empty()) bj["ranges"] = to_json(b.ranges);
     if (!b.details.is_null()) bj["details"] = b.details;

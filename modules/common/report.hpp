@@ -25,6 +25,7 @@ struct BlockStats {
   uint64_t packets = 0, pixels = 0, busy_cycles = 0, bypassed = 0;
   uint64_t starved_cycles = 0, blocked_cycles = 0;  // waiting for input, for room downstream
   uint64_t fifo_cycles = 0, fifo_peak = 0;          // Σ pixel-cycles in its input FIFO; the most it held
+  bool fifo_measured = false;                       // a FIFO of pixels before it, measured
   Ops ops;
 };
 

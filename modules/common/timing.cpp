@@ -182,7 +182,8 @@ void TimingLog::pixels(const SpanPacket& p, uint64_t hidden, const PixelLine& li
              std::to_string(i == 0 ? hidden : 0);
     for (size_t j = 1; j < line.size(); ++j) text_ += " " + std::to_string(line.work(int(j)).at(i));
     for (size_t j = 0; j < line.size(); ++j)
-      text_ += " " + std::to_string(line.start(int(j), i)) + " " + std::to_string(line.handed(int(j), i));
+      text_ += " " + std::to_string(line.start(int(j), i)) + " " + std::to_string(line.valid_from(int(j), i)) + " " +
+               std::to_string(line.handed(int(j), i));
     text_ += "\n";
   }
 }

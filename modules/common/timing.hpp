@@ -23,7 +23,7 @@
 // Every term refers to an earlier pixel or to the block before, so the sweep is exact in
 // pixel-major order (for each pixel, for each block). The raster (block 0) walks: its
 // pixel n starts when the walk reaches it and a register is free; hidden pixels cost a
-// step each and need no register (RasterWalk below).
+// step each and need no register (start_triangle, walk_hidden, sweep).
 #include <algorithm>
 #include <cstdint>
 #include <functional>
@@ -73,9 +73,10 @@ class PixelLine;
 //   block <name> <latency> <ii> <fifo_depth>       setup, the raster, then each span block
 //   t <triangle> <start> <handed>                 setup hands a triangle on
 //   r <cycle>                                     the raster takes it
-//   p <x> <y> <hidden> <w_1> … <w_J> <s_0> <d_0> … <s_J> <d_J>
+//   p <x> <y> <hidden> <w_1> … <w_J> <s_0> <v_0> <d_0> … <s_J> <v_J> <d_J>
 //                                                 a pixel: hidden steps walked before it,
-//                                                 its work at each span block, its times
+//                                                 its work at each span block, its start,
+//                                                 valid (at the output) and hand-over
 //   e <steps>                                     hidden steps after the triangle's last pixel
 //   end <cycle>                                   the pass's end
 //   stats <name> <busy> <starved> <blocked> <fifo_cycles> <fifo_peak>

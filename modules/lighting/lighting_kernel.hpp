@@ -8,6 +8,7 @@
 // L and H come from vector_interp where they vary over the frame, else they are the
 // frame's constants. The power is one table look-up in hardware; in float32 here it is
 // specular_power (power.hpp), in the reduced formats the exact power rounded once.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -23,7 +24,8 @@ class LightingKernel {
 
   void process(SpanPacket& p);
   Ops ops() const;
-  Work work(const SpanPacket&) const { return {nullptr, uint32_t(lights_.size())}; }  // a light a cycle
+  // A light a cycle; with none, the ambient term alone takes one.
+  Work work(const SpanPacket&) const { return {nullptr, uint32_t(std::max<size_t>(lights_.size(), 1))}; }
   bool bypass(const SpanPacket&) const { return false; }
   NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events, checks_}; }
 
