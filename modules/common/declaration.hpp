@@ -96,7 +96,7 @@ struct BlockDecl {
   enum class Fifo { None, Pixels, Triangles } fifo = Fifo::Pixels;
   // The arithmetic units on its critical path for its settings (a mode): their latency
   // is added to <name>.latency, and its II is at least theirs. Empty: none.
-  std::function<Timing(const BlockContext&)> units;
+  std::function<Timing(const BlockContext&)> units = nullptr;
 };
 
 // An arithmetic unit's latency and II (pipeline.unit.<name>.latency and .ii, docs/

@@ -282,7 +282,7 @@ bool ParallaxKernel::needed(const core::Scene& scene) {
 }
 
 ParallaxKernel::ParallaxKernel(const core::Scene& scene, core::NumberFormat format, int64_t cell_cycles)
-    : scene_(scene), numbers_(format), cell_cycles_(cell_cycles) {
+    : scene_(scene), cell_cycles_(cell_cycles), numbers_(format) {
   maps_.resize(scene.materials.size());
   for (const auto& o : scene.objects) {
     const core::Material& m = scene.materials[size_t(o.material)];
