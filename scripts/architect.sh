@@ -15,6 +15,8 @@ bin=$root/build/app/shadetlm
 [[ -x $bin ]] || "$root/scripts/build.sh" >/dev/null
 doc=0
 [[ ${1:-} == --doc ]] && { doc=1; shift; }
+# docs/architect.md reads its tables as golden/sphere's.
+((doc)) && [[ $# -gt 0 ]] && { echo "architect.sh: --doc takes no SCENE (the page is about golden/sphere)" >&2; exit 2; }
 scene=${1:-$root/golden/sphere/scene.json}
 out=$root/out/architect
 mkdir -p "$out"
@@ -108,9 +110,13 @@ import re, sys
 text, doc = open(sys.argv[1]).read(), sys.argv[2]
 tables = [t.strip() for t in re.findall(r"((?:^\|.*\n)+)", text, re.M)]
 page = open(doc).read()
+if len(tables) != 3:
+    sys.exit(f"architect.sh: {len(tables)} tables printed, 3 expected; {doc} left as it was")
 for n, table in enumerate(tables, 1):
-    page = re.sub(rf"(<!-- architect:{n} -->\n).*?(\n<!-- /architect:{n} -->)", lambda m: m.group(1) + table + m.group(2),
-                  page, flags=re.S)
+    page, found = re.subn(rf"(<!-- architect:{n} -->\n).*?(\n<!-- /architect:{n} -->)",
+                          lambda m: m.group(1) + table + m.group(2), page, flags=re.S)
+    if found != 1:
+        sys.exit(f"architect.sh: {doc} lacks the markers of table {n}; left as it was")
 open(doc, "w").write(page)
 PY
 fi

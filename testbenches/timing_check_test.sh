@@ -126,6 +126,8 @@ sed '10s/^p \([0-9]*\) /p \1 x /' "$tmp/good.log" >"$tmp/bad.log";        refuse
 sed '3s/ 2 1 8$/ 2 0 8/' "$tmp/good.log" >"$tmp/bad.log";                refuse zero-ii "line 3"
 printf 'block setup 16 8 0\nblock raster 4 1 99999999999\n' >"$tmp/bad.log"; refuse huge-depth "line 2"
 echo "hello" >"$tmp/bad.log";                                         refuse unknown "unknown record"
+printf 'block setup 16 8 0\nblock raster 4 1000000 4\nblock a 1 1 8\nt 0 0 16\nr 17\np 1 1 100000000 1 0 0 0 0 0 0\ne 0\nend 5\n' \
+  >"$tmp/bad.log";                                                    refuse too-long "10^11 cycles"
 
 echo "$passes passed, $failures failed"
 [[ $failures -eq 0 && $passes -ge 20 ]]

@@ -270,14 +270,7 @@ Measured run_clocked(const Workload& w) {
   // Registers start empty: nothing valid, every FIFO ready — and the last block's
   // output always taken.
   for (auto& l : links) l->ready.write(true);
-  // A bound no run can reach: every pixel through every block, one after another.
-  int64_t bound = 1000;
-  for (const BlockSpec& b : w.blocks) bound += int64_t(triangles + pixels) * (b.latency + b.ii + 2);
-  for (const Pixel& p : w.pixels) {
-    bound += p.hidden * w.blocks[1].ii;
-    for (size_t j = 0; j < p.work.size(); ++j) bound += int64_t(p.work[j]) * w.blocks[j + 2].ii;
-  }
-  for (const Triangle& t : w.triangles) bound += t.trailing * w.blocks[1].ii;
+  const int64_t bound = int64_t(serial_cycles(w));  // no run can reach it (read_workload keeps it small)
   const Unit& last_block = units.empty() ? static_cast<const Unit&>(raster) : *units.back();
   auto done = [&] { return raster.done() && last_block.handed_count == pixels; };
   Monitor monitor("monitor", done, bound);

@@ -48,7 +48,7 @@ Workload read_workload(const std::string& path) {
       for (auto& x : p.work) s >> x;
       for (size_t j = 0; j < line_blocks; ++j) s >> p.start[j] >> p.valid[j] >> p.handed[j];
       std::string extra;
-      if (!s || p.hidden < 0 || p.hidden > 1000000000 || (s >> extra))
+      if (!s || p.hidden < 0 || p.hidden > 100000000 || (s >> extra))
         fail("expected: p <x> <y> <hidden> <a work per span block> <start valid handed per line block>");
       for (uint32_t x : p.work)
         if (x > 65535) fail("a pixel's work is at most 65535 units");
@@ -56,10 +56,10 @@ Workload read_workload(const std::string& path) {
       ++w.triangles.back().pixels;
     } else if (kind == "e") {
       if (w.triangles.empty() || !(s >> w.triangles.back().trailing) || w.triangles.back().trailing < 0 ||
-          w.triangles.back().trailing > 1000000000)
+          w.triangles.back().trailing > 100000000)
         fail("expected: e <steps>, after a triangle");
     } else if (kind == "end") {
-      if (!(s >> w.end)) fail("expected: end <cycle>");
+      if (!(s >> w.end) || w.end < 0) fail("expected: end <cycle ≥ 0>");
     } else if (kind == "stats") {
       BlockStatsLine b;
       s >> b.name >> b.busy >> b.starved >> b.blocked >> b.fifo_cycles >> b.fifo_peak;
@@ -71,7 +71,19 @@ Workload read_workload(const std::string& path) {
   }
   if (w.blocks.size() < 2) throw core::InputError(path, "block", "needs setup and the raster at least");
   if (w.end < 0) throw core::InputError(path, "end", "no end record: a log cut short?");
+  if (serial_cycles(w) > 1e11) throw core::InputError(path, "", "more than 10^11 cycles to step: too long to check");
   return w;
+}
+
+double serial_cycles(const Workload& w) {
+  double bound = 1000;
+  for (const BlockSpec& b : w.blocks) bound += double(w.triangles.size() + w.pixels.size()) * double(b.latency + b.ii + 2);
+  for (const Pixel& p : w.pixels) {
+    bound += double(p.hidden) * double(w.blocks[1].ii);
+    for (size_t j = 0; j < p.work.size(); ++j) bound += double(p.work[j]) * double(w.blocks[j + 2].ii);
+  }
+  for (const Triangle& t : w.triangles) bound += double(t.trailing) * double(w.blocks[1].ii);
+  return bound;
 }
 
 }  // namespace shadetlm::timing_reference

@@ -42,7 +42,12 @@ struct Workload {
 };
 
 // Reads a timing log; throws core::InputError naming the file and line (a record out of
-// place, a number missing or out of range: latencies, IIs and depths in 1 … 1000000).
+// place, a number missing or out of range: latencies, IIs and depths in 1 … 1000000),
+// or the file, if the clocked model would step more than 10¹¹ cycles.
 Workload read_workload(const std::string& path);
+
+// A bound on the cycles of any run of `w`: every triangle and pixel through every block,
+// one after another (in double: a hand-made log may overflow 64 bits).
+double serial_cycles(const Workload& w);
 
 }  // namespace shadetlm::timing_reference

@@ -243,7 +243,7 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
   PixelLine* line_ = nullptr;  // none in a testbench of the block alone
   int slot_ = 0;
   bool traced_ = false, worked_ = false;  // the packet now passing: traced, not bypassed
-  double traced_values_[kSpanMax][16];    // its waveform values, for the traced pixels
+  double traced_values_[kSpanMax][16] = {};  // its waveform values, for the traced pixels
   BlockStats stats_;
   BlockTimes alone_;
   tlm::tlm_fw_transport_if<>* next_ = nullptr;         // the next block
