@@ -66,6 +66,47 @@ void PixelLine::walk_hidden(uint64_t steps) {
   r.free += int64_t(cycles);
 }
 
+// The pixels of the packet, pixel by pixel, block by block (timing.hpp's recurrence).
+template <bool kInspect>
+void PixelLine::sweep_pixels(int count) {
+  const size_t blocks = blocks_.size();
+  for (int i = 0; i < count; ++i, ++n_) {
+    const uint64_t slot = n_ & ring_mask_;
+    // The raster: the walk has reached the pixel (a step of its own) and a register is free.
+    Slot& r = blocks_[0];
+    int64_t s = std::max(r.free, r.d[(n_ - uint64_t(r.capacity)) & ring_mask_] + 1);
+    r.t.blocked += uint64_t(s - r.free);
+    if constexpr (kInspect) r.t.add_busy(s, uint64_t(r.ii));
+    else r.t.busy += uint64_t(r.ii);
+    r.free = s + r.ii;
+    int64_t d = std::max(std::max(s + r.latency, r.t.last + 1), r.next_s[(n_ - uint64_t(r.next_depth)) & ring_mask_] + 1);
+    if constexpr (kInspect) times_[0][size_t(i)] = {s, d, std::max(s + r.latency, r.t.last + 1), 0};
+    r.s[slot] = s, r.d[slot] = d, r.t.last = d;
+    for (size_t j = 1; j < blocks; ++j) {  // the span blocks, timing.hpp's recurrence
+      Slot& b = blocks_[j];
+      const int64_t arrived = d + 1;  // in its FIFO since the cycle before
+      const int64_t room = b.d[(n_ - uint64_t(b.capacity)) & ring_mask_] + 1;  // a register free
+      s = std::max(arrived, std::max(b.free, room));
+      b.t.blocked += uint64_t(std::max<int64_t>(room - b.free, 0));  // every register full
+      // Its FIFO held the pixel from the end of cycle d_{j−1}(n) to s; the peak: the pixels
+      // in it once this one came in.
+      b.t.fifo_cycles += uint64_t(s - d);
+      while (b.head < int64_t(n_) && b.s[uint64_t(b.head) & ring_mask_] < arrived) ++b.head;
+      b.t.fifo_peak = std::max(b.t.fifo_peak, n_ + 1 - uint64_t(b.head));
+      const uint32_t w = b.w[i];
+      const int64_t o = std::max<int64_t>(b.ii * int64_t(w), 1);  // 1: bypassed
+      if constexpr (kInspect) b.t.add_busy(s, uint64_t(o));
+      else b.t.busy += uint64_t(o);
+      b.free = s + o;
+      const int64_t f = b.free + (w > 0 ? b.latency - b.ii : 0);
+      const int64_t valid = std::max(f, b.t.last + 1);
+      d = std::max(valid, b.next_s[(n_ - uint64_t(b.next_depth)) & ring_mask_] + 1);
+      if constexpr (kInspect) times_[j][size_t(i)] = {s, d, valid, n_ + 1 - uint64_t(b.head)};
+      b.s[slot] = s, b.d[slot] = d, b.t.last = d;
+    }
+  }
+}
+
 void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before) {
   const int count = p.count;
   walk_hidden(hidden_before);
@@ -81,39 +122,12 @@ void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before) {
       b.w = b.uniform;
     }
   }
-  for (int i = 0; i < count; ++i, ++n_) {
-    const uint64_t slot = n_ & ring_mask_;
-    // The raster: the walk has reached the pixel (a step of its own) and a register is free.
-    Slot& r = blocks_[0];
-    int64_t s = std::max(r.free, r.d[(n_ - uint64_t(r.capacity)) & ring_mask_] + 1);
-    r.t.blocked += uint64_t(s - r.free);
-    r.t.add_busy(s, uint64_t(r.ii));
-    r.free = s + r.ii;
-    int64_t d = std::max({s + r.latency, r.t.last + 1, r.next_s[(n_ - uint64_t(r.next_depth)) & ring_mask_] + 1});
-    if (keep_times) times_[0][size_t(i)] = {s, d, std::max(s + r.latency, r.t.last + 1), 0};
-    r.s[slot] = s, r.d[slot] = d, r.t.last = d;
-    for (size_t j = 1; j < blocks; ++j) {  // the span blocks, timing.hpp's recurrence
-      Slot& b = blocks_[j];
-      const int64_t arrived = d + 1;  // in its FIFO since the cycle before
-      const int64_t room = b.d[(n_ - uint64_t(b.capacity)) & ring_mask_] + 1;  // a register free
-      s = std::max(arrived, std::max(b.free, room));
-      b.t.blocked += uint64_t(std::max<int64_t>(room - b.free, 0));  // every register full
-      // Its FIFO held the pixel from the end of cycle d_{j−1}(n) to s; the peak: the pixels
-      // in it once this one came in.
-      b.t.fifo_cycles += uint64_t(s - d);
-      while (b.head < int64_t(n_) && b.s[uint64_t(b.head) & ring_mask_] < arrived) ++b.head;
-      b.t.fifo_peak = std::max(b.t.fifo_peak, n_ + 1 - uint64_t(b.head));
-      const uint32_t w = b.w[i];
-      const int64_t o = std::max<int64_t>(b.ii * int64_t(w), 1);  // 1: bypassed
-      b.t.add_busy(s, uint64_t(o));
-      b.free = s + o;
-      const int64_t f = b.free + (w > 0 ? b.latency - b.ii : 0);
-      const int64_t valid = std::max(f, b.t.last + 1);
-      d = std::max(valid, b.next_s[(n_ - uint64_t(b.next_depth)) & ring_mask_] + 1);
-      if (keep_times) times_[j][size_t(i)] = {s, d, valid, n_ + 1 - uint64_t(b.head)};
-      b.s[slot] = s, b.d[slot] = d, b.t.last = d;
-    }
-  }
+  // Inspecting (times kept, utilization over time) or not: two copies of the loop, so
+  // that the common one carries no test for it.
+  bool inspect = keep_times;
+  for (const Slot& b : blocks_) inspect = inspect || b.t.bin_cycles > 0;
+  if (inspect) sweep_pixels<true>(count);
+  else sweep_pixels<false>(count);
   if (log_) log_->pixels(p, hidden_before, *this);
   for (TimedObserver* o : observers_) o->timed(p);
 }

@@ -154,6 +154,7 @@ class PixelLine {
     int64_t s, d, v;
     uint64_t q;
   };
+  template <bool kInspect> void sweep_pixels(int count);
 
   std::vector<Slot> blocks_;
   std::vector<int64_t> ring_;  // per block: the starts, then the hand-overs of the last pixels
