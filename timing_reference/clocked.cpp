@@ -30,9 +30,14 @@ struct Link {
 // fast model books the waits before each start, none after the last).
 class Unit : public sc_core::sc_module {
  public:
+  SC_HAS_PROCESS(Unit);
+  // Each block's edge() runs at every rising edge of the clock.
   Unit(sc_core::sc_module_name name, const BlockSpec& spec, Link& out)
       : sc_core::sc_module(name), spec_(spec), capacity_((spec.latency + 1 + spec.ii - 1) / spec.ii), out_(out) {
     stats.name = spec.name;
+    SC_METHOD(edge);
+    sensitive << clk.pos();
+    dont_initialize();
   }
   sc_core::sc_in<bool> clk;
   BlockStatsLine stats;
@@ -43,6 +48,7 @@ class Unit : public sc_core::sc_module {
 
  protected:
   struct Held { int64_t item, done; };
+  virtual void edge() = 0;
   bool room() const { return int64_t(held_.size()) < capacity_; }
   // Issues `item` at t for `work` units (0: passes through in a cycle).
   void issue(int64_t t, int64_t item, int64_t work) {
@@ -80,16 +86,11 @@ class Unit : public sc_core::sc_module {
 // Setup: a triangle every II cycles, handed on to the raster's triangle FIFO.
 class Source : public Unit {
  public:
-  SC_HAS_PROCESS(Source);
   Source(sc_core::sc_module_name name, const BlockSpec& spec, Link& out, size_t triangles, std::vector<int64_t>& start)
-      : Unit(name, spec, out), triangles_(triangles), start_(start) {
-    SC_METHOD(edge);
-    sensitive << clk.pos();
-    dont_initialize();
-  }
+      : Unit(name, spec, out), triangles_(triangles), start_(start) {}
 
  private:
-  void edge() {
+  void edge() override {
     const int64_t t = cycle_now();
     const bool out = handing_over();
     if (t >= free_ && next_ < triangles_) {
@@ -107,14 +108,9 @@ class Source : public Unit {
 // need no register, a visible one waits for a free register and is handed on.
 class Walker : public Unit {
  public:
-  SC_HAS_PROCESS(Walker);
   Walker(sc_core::sc_module_name name, const BlockSpec& spec, Link& in, Link& out, const Workload& w,
          Measured& m)
-      : Unit(name, spec, out), in_(in), w_(w), m_(m) {
-    SC_METHOD(edge);
-    sensitive << clk.pos();
-    dont_initialize();
-  }
+      : Unit(name, spec, out), in_(in), w_(w), m_(m) {}
   bool done() const { return taken_ == w_.triangles.size() && cur_ < 0; }
   int64_t walk_end() const { return free_; }
 
@@ -140,7 +136,7 @@ class Walker : public Unit {
     free_ = t + spec_.ii;
     stats.busy += spec_.ii;
   }
-  void edge() {
+  void edge() override {
     const int64_t t = cycle_now();
     const bool in = in_.valid.read() && in_.ready.read(), out = handing_over();
     if (t >= free_) {
@@ -181,17 +177,12 @@ class Walker : public Unit {
 // A span block: its input FIFO, its unit, its output.
 class SpanUnit : public Unit {
  public:
-  SC_HAS_PROCESS(SpanUnit);
   SpanUnit(sc_core::sc_module_name name, const BlockSpec& spec, size_t index, Link& in, Link& out,
            const Workload& w, std::vector<int64_t>& start)
-      : Unit(name, spec, out), index_(index), in_(in), w_(w), start_(start) {
-    SC_METHOD(edge);
-    sensitive << clk.pos();
-    dont_initialize();
-  }
+      : Unit(name, spec, out), index_(index), in_(in), w_(w), start_(start) {}
 
  private:
-  void edge() {
+  void edge() override {
     const int64_t t = cycle_now();
     const bool in = in_.valid.read() && in_.ready.read(), out = handing_over();
     if (t >= free_) {

@@ -50,7 +50,7 @@ void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& dela
   if (line_) line_->walk_hidden(trailing);
   if (log) log->trailing(trailing);
   // Setup's back-pressure: the transaction returns the cycle the raster took it.
-  delay = period_ * double(taken) - now;
+  delay = sent;
   trans.set_response_status(tlm::TLM_OK_RESPONSE);
 }
 
