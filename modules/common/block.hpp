@@ -205,8 +205,8 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
 
   [[gnu::noinline]] void work(tlm::tlm_generic_payload& trans, SpanPacket& p, sc_core::sc_time& delay) {
     if constexpr (kTracing) {
-      traced_ = tracer_ && (!filter_ || filter_->covers(p.y, p.x0, p.x0 + p.count, p.tri->id)) &&
-                tracer_->region().covers(p.y, p.x0, p.x0 + p.count, p.tri->id);
+      // (The tracer's region is the filter, when one is given.)
+      traced_ = tracer_ && tracer_->region().covers(p.y, p.x0, p.x0 + p.count, p.tri->id);
       if (tracer_) kernel_.set_capture(traced_);
     }
     kernel_.process(p);
@@ -226,8 +226,7 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
 
   [[gnu::noinline]] void end_pass(tlm::tlm_generic_payload& trans, sc_core::sc_time& delay) {
     PassEnd& e = *reinterpret_cast<PassEnd*>(trans.get_data_ptr());
-    if constexpr (has_end_pass<Kernel>::value) kernel_.end_pass(e);
-    if (line_) e.cycle = std::max(e.cycle, uint64_t(line_->end()));
+    if constexpr (has_end_pass<Kernel>::value) kernel_.end_pass(e);  // (the raster has set e.cycle: it holds the line)
     trans.set_response_status(tlm::TLM_OK_RESPONSE);
     if (next_) next_->b_transport(trans, delay);
   }
