@@ -66,6 +66,21 @@ hostile latency-zero "pipeline.lighting.latency" render neg.json --set 'pipeline
 hostile unit-zero "pipeline.unit.div.ii" render neg.json --set 'pipeline.unit.div.ii=0'
 hostile unit-huge "pipeline.unit.sqrt.latency" render neg.json --set 'pipeline.unit.sqrt.latency=99999999'
 hostile unit-text "pipeline.unit.mul.latency" render neg.json --set 'pipeline.unit.mul.latency="four"'
+# Memory settings (docs/memory.md): caches of powers of two whose ways divide their
+# lines, a DRAM that moves something and answers within its range.
+mem=(--set pipeline.memory.model=dram)
+hostile cache-not-pow2 "pipeline.framebuffer.cache.size" render neg.json "${mem[@]}" --set 'pipeline.framebuffer.cache.size=1000'
+hostile line-not-pow2 "pipeline.framebuffer.cache.line" render neg.json "${mem[@]}" --set 'pipeline.framebuffer.cache.line=48'
+hostile line-over-cache "pipeline.framebuffer.cache.line" render neg.json "${mem[@]}" \
+  --set 'pipeline.framebuffer.cache.size=256' --set 'pipeline.framebuffer.cache.line=512'
+hostile ways-not-dividing "pipeline.framebuffer.cache.ways" render neg.json "${mem[@]}" --set 'pipeline.framebuffer.cache.ways=3'
+hostile ways-zero "pipeline.framebuffer.cache.ways" render neg.json "${mem[@]}" --set 'pipeline.framebuffer.cache.ways=0'
+hostile bandwidth-zero "pipeline.memory.bytes_per_cycle" render neg.json "${mem[@]}" --set 'pipeline.memory.bytes_per_cycle=0'
+hostile dram-latency-zero "pipeline.memory.latency" render neg.json "${mem[@]}" --set 'pipeline.memory.latency=0'
+hostile dram-latency-huge "pipeline.memory.latency" render neg.json "${mem[@]}" --set 'pipeline.memory.latency=1e9'
+hostile memory-model "pipeline.memory.model" render neg.json --set 'pipeline.memory.model=sram'
+hostile layout "pipeline.framebuffer.cache.layout" render neg.json "${mem[@]}" --set 'pipeline.framebuffer.cache.layout=hilbert'
+hostile miss-queue-negative "pipeline.framebuffer.miss_queue" render neg.json "${mem[@]}" --set 'pipeline.framebuffer.miss_queue=-1'
 # The timing log is kept in memory: large frames are refused before the run.
 hostile timing-log-huge "--timing-log" render neg.json --set 'camera.resolution=[2048,1024]' --timing-log t.log
 [[ ! -e t.log ]] && ((passes++)) || { echo "FAIL: a refused timing log was written"; ((failures++)); }

@@ -5,7 +5,9 @@
 # slow block at the end — must give the same start and hand-over cycle for every pixel
 # at every block, the same frame cycles and the same busy, starved, blocked and FIFO
 # figures. The stress configurations must also stall (blocked cycles > 0 somewhere), or
-# they would not test back-pressure. Usage: timing_check_test.sh SHADETLM SOURCE_DIR
+# they would not test back-pressure; those with memory (docs/memory.md: small caches,
+# little bandwidth, short miss queues) must also wait for it (memory stall cycles > 0).
+# Usage: timing_check_test.sh SHADETLM SOURCE_DIR
 set -u
 bin=$1
 src=$2
@@ -14,7 +16,8 @@ trap 'rm -rf "$tmp"' EXIT
 passes=0
 failures=0
 
-# check NAME STALLS SCENE [--set k=v]...: STALLS=1 requires blocked cycles somewhere.
+# check NAME STALLS SCENE [--set k=v]...: STALLS=1 requires blocked cycles somewhere,
+# STALLS=2 memory stall cycles too.
 check() {
   local name=$1 stalls=$2 scene=$3
   shift 3
@@ -27,7 +30,10 @@ check() {
   local blocked
   blocked=$(awk '$1 == "stats" { b += $5 } END { print b + 0 }' "$tmp/t.log")
   if ((stalls)) && ((blocked == 0)); then echo "FAIL $name: no block ever stalled"; ((failures++)); return; fi
-  echo "ok $name: $(head -1 "$tmp/check" | cut -d: -f2-), blocked cycles $blocked"
+  local waited
+  waited=$(awk '$1 == "stats" { m += $8 } END { print m + 0 }' "$tmp/t.log")
+  if ((stalls == 2)) && ((waited == 0)); then echo "FAIL $name: no pixel waited for memory"; ((failures++)); return; fi
+  echo "ok $name: $(head -1 "$tmp/check" | cut -d: -f2-), blocked cycles $blocked, memory stall cycles $waited"
   ((passes++))
 }
 
@@ -60,6 +66,24 @@ check "setup against the raster's FIFO" 1 "$src/golden/demo/scene.json" --set pi
 # Textures: taps per pixel vary with the footprint.
 check "texture taps, FIFOs of 1" 1 "$src/golden/texture-screen/scene.json" --set pipeline.texture_fetch.filter=anisotropic \
   --set pipeline.texture_fetch.fifo_depth=1 --set pipeline.lighting.ii=3 --set pipeline.normalize.mode=rsqrt2
+
+# Memory (docs/memory.md): caches, one shared DRAM, oldest pixel first.
+dram=(--set pipeline.memory.model=dram)
+check "bump, small caches, little bandwidth" 2 "$src/golden/bump-knot/scene.json" "${dram[@]}" \
+  --set pipeline.bump_fetch.cache.size=1024 --set pipeline.memory.bytes_per_cycle=4 --set pipeline.memory.latency=50 \
+  --set pipeline.bump_fetch.miss_queue=2 --set pipeline.framebuffer.cache.size=512 --set pipeline.framebuffer.fifo_depth=1
+check "bump, no miss queue, linear" 2 "$src/golden/bump-sphere/scene.json" "${dram[@]}" \
+  --set pipeline.bump_fetch.miss_queue=0 --set pipeline.bump_fetch.cache.layout=linear \
+  --set pipeline.bump_fetch.cache.ways=1 --set pipeline.memory.bytes_per_cycle=3
+check "EWA through a direct-mapped cache, morton" 2 "$src/golden/texture-screen/scene.json" "${dram[@]}" \
+  --set pipeline.texture_fetch.filter=ewa --set pipeline.texture_fetch.cache.size=2048 \
+  --set pipeline.texture_fetch.cache.ways=1 --set pipeline.texture_fetch.cache.layout=morton \
+  --set pipeline.texture_fetch.miss_queue=4 --set pipeline.memory.bytes_per_cycle=2 --set pipeline.lighting.fifo_depth=1
+check "framebuffer writes back, lines of 16 bytes" 2 "$src/golden/demo/scene.json" "${dram[@]}" \
+  --set pipeline.framebuffer.cache.size=256 --set pipeline.framebuffer.cache.line=16 \
+  --set pipeline.framebuffer.cache.layout=linear --set pipeline.framebuffer.miss_queue=1 --set pipeline.memory.latency=9
+check "two texture clients share the DRAM" 2 "$src/golden/parallax-steps/scene.json" "${dram[@]}" \
+  --set pipeline.texture_fetch.cache.size=512 --set pipeline.framebuffer.cache.size=512 --set pipeline.memory.bytes_per_cycle=1
 
 # The waveforms keep the same order: no pixel reaches a block before the block before
 # it handed it on plus a cycle and the block's latency (scripts/vcd-causality.py) — and
@@ -123,7 +147,11 @@ refuse() {  # refuse NAME TEXT: the log in $tmp/bad.log
 head -n 200 "$tmp/good.log" >"$tmp/bad.log";                           refuse cut-short "end"
 { head -n 12 "$tmp/good.log"; echo "block late 1 1 1"; } >"$tmp/bad.log"; refuse block-late "line 13"
 sed '10s/^p \([0-9]*\) /p \1 x /' "$tmp/good.log" >"$tmp/bad.log";        refuse not-a-number "line 10"
-sed '3s/ 2 1 8$/ 2 0 8/' "$tmp/good.log" >"$tmp/bad.log";                refuse zero-ii "line 3"
+sed '3s/ 2 1 8 0 0$/ 2 0 8 0 0/' "$tmp/good.log" >"$tmp/bad.log";        refuse zero-ii "line 3"
+{ head -n 3 "$tmp/good.log"; echo "memory 200 0"; sed -n '4,$p' "$tmp/good.log"; } >"$tmp/bad.log"
+                                                                      refuse zero-bandwidth "line 4"
+{ head -n 3 "$tmp/good.log"; echo "memory 200 32"; sed -n '4,$p' "$tmp/good.log"; } >"$tmp/bad.log"
+                                                                      refuse lines-missing "expected: p"
 printf 'block setup 16 8 0\nblock raster 4 1 99999999999\n' >"$tmp/bad.log"; refuse huge-depth "line 2"
 echo "hello" >"$tmp/bad.log";                                         refuse unknown "unknown record"
 printf 'block setup 16 8 0\nblock raster 4 1000000 4\nblock a 1 1 8\nt 0 0 16\nr 17\np 1 1 100000000 1 0 0 0 0 0 0\ne 0\nend 5\n' \

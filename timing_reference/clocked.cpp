@@ -1,6 +1,8 @@
 #include "shadetlm/timing_reference/clocked.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <climits>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -33,7 +35,10 @@ class Unit : public sc_core::sc_module {
   SC_HAS_PROCESS(Unit);
   // Each block's edge() runs at every rising edge of the clock.
   Unit(sc_core::sc_module_name name, const BlockSpec& spec, Link& out)
-      : sc_core::sc_module(name), spec_(spec), capacity_((spec.latency + 1 + spec.ii - 1) / spec.ii), out_(out) {
+      : sc_core::sc_module(name),
+        spec_(spec),
+        capacity_((spec.latency + 1 + spec.ii - 1) / spec.ii + (spec.line_bytes > 0 ? spec.miss_queue : 0)),
+        out_(out) {
     stats.name = spec.name;
     SC_METHOD(edge);
     sensitive << clk.pos();
@@ -46,14 +51,28 @@ class Unit : public sc_core::sc_module {
   int64_t last = -1;
   size_t handed_count = 0;
 
+  // The DRAM: the data of `item`'s request is in the block at `back`.
+  void data_back(int64_t item, int64_t back) {
+    for (Held& h : held_)
+      if (h.item == item) {
+        stats.memory_stall += std::max<int64_t>(back - h.work_end, 0);
+        h.done = std::max(h.work_end, back) + spec_.latency;
+      }
+  }
+
  protected:
-  struct Held { int64_t item, done; };
+  static constexpr int64_t kNever = INT64_MAX / 2;
+  // An item in the block: done at `done`; waiting for memory (done = kNever) its work
+  // ends at `work_end`, and it is done L cycles after that and its data.
+  struct Held { int64_t item, done, work_end; };
   virtual void edge() = 0;
   bool room() const { return int64_t(held_.size()) < capacity_; }
-  // Issues `item` at t for `work` units (0: passes through in a cycle).
-  void issue(int64_t t, int64_t item, int64_t work) {
+  // Issues `item` at t for `work` units (0: passes through in a cycle); `memory`: it
+  // waits for data from the DRAM too.
+  void issue(int64_t t, int64_t item, int64_t work, bool memory = false) {
     const int64_t busy = work > 0 ? spec_.ii * work : 1;
-    held_.push_back({item, work > 0 ? t + spec_.ii * (work - 1) + spec_.latency : t + 1});
+    const int64_t work_end = t + spec_.ii * (work - 1);
+    held_.push_back({item, memory ? kNever : work > 0 ? work_end + spec_.latency : t + 1, work_end});
     free_ = t + busy;
     stats.busy += busy;
     stats.starved += starved_, stats.blocked += blocked_;
@@ -174,12 +193,57 @@ class Walker : public Unit {
   size_t pixel_ = 0, taken_ = 0;
 };
 
+// The shared DRAM: each cycle it moves up to B bytes to the requests present, oldest
+// pixel first (for one pixel, the earlier block first); a request made in cycle t is
+// present from t + 1, and its data is back `latency` cycles after its last byte.
+class DramUnit : public sc_core::sc_module {
+ public:
+  SC_HAS_PROCESS(DramUnit);
+  DramUnit(sc_core::sc_module_name name, MemorySpec spec) : sc_core::sc_module(name), spec_(spec) {
+    SC_METHOD(edge);
+    sensitive << clk.pos();
+    dont_initialize();
+  }
+  sc_core::sc_in<bool> clk;
+  // Pixel `pixel` asks at block `block` (its age: pixel, then block) in cycle `made`.
+  void request(int64_t pixel, size_t block, int64_t made, int64_t bytes, Unit* unit) {
+    pending_.push_back({pixel, block, made + 1, bytes, unit});
+  }
+  int64_t bytes = 0;
+
+ private:
+  struct Request {
+    int64_t pixel;
+    size_t block;
+    int64_t present, left;
+    Unit* unit;
+  };
+  void edge() {
+    const int64_t t = cycle_now();
+    std::sort(pending_.begin(), pending_.end(), [](const Request& a, const Request& b) {
+      return a.pixel != b.pixel ? a.pixel < b.pixel : a.block < b.block;
+    });
+    int64_t budget = spec_.bytes_per_cycle;
+    for (Request& r : pending_) {
+      if (budget == 0) break;
+      if (r.present > t) continue;
+      const int64_t take = std::min(budget, r.left);
+      r.left -= take, budget -= take, bytes += take;
+      if (r.left == 0) r.unit->data_back(r.pixel, t + spec_.latency);
+    }
+    pending_.erase(std::remove_if(pending_.begin(), pending_.end(), [](const Request& r) { return r.left == 0; }),
+                   pending_.end());
+  }
+  MemorySpec spec_;
+  std::vector<Request> pending_;
+};
+
 // A span block: its input FIFO, its unit, its output.
 class SpanUnit : public Unit {
  public:
   SpanUnit(sc_core::sc_module_name name, const BlockSpec& spec, size_t index, Link& in, Link& out,
-           const Workload& w, std::vector<int64_t>& start)
-      : Unit(name, spec, out), index_(index), in_(in), w_(w), start_(start) {}
+           const Workload& w, std::vector<int64_t>& start, DramUnit* dram)
+      : Unit(name, spec, out), index_(index), in_(in), w_(w), start_(start), dram_(dram) {}
 
  private:
   void edge() override {
@@ -190,7 +254,10 @@ class SpanUnit : public Unit {
         const int64_t n = fifo_.front();
         fifo_.pop_front();
         start_[size_t(n)] = t;
-        issue(t, n, int64_t(w_.pixels[size_t(n)].work[index_]));
+        const Pixel& p = w_.pixels[size_t(n)];
+        const int64_t lines = dram_ && !p.lines.empty() ? int64_t(p.lines[index_]) : 0;
+        issue(t, n, int64_t(p.work[index_]), lines > 0);
+        if (lines > 0) dram_->request(n, index_, t, lines * spec_.line_bytes, this);
       } else {
         wait_cycle();
       }
@@ -207,6 +274,7 @@ class SpanUnit : public Unit {
   Link& in_;
   const Workload& w_;
   std::vector<int64_t>& start_;
+  DramUnit* dram_;
   std::deque<int64_t> fifo_;
 };
 
@@ -250,10 +318,15 @@ Measured run_clocked(const Workload& w) {
   setup.handed = &m.setup_handed;
   Walker raster("raster", w.blocks[1], *links[0], *links[1], w, m);
   raster.handed = &m.handed[0], raster.valid = &m.valid[0];
+  std::unique_ptr<DramUnit> dram;
+  if (w.memory) {
+    dram = std::make_unique<DramUnit>("dram", *w.memory);
+    dram->clk(clk);
+  }
   std::vector<std::unique_ptr<SpanUnit>> units;
   for (size_t j = 1; j < line; ++j) {
     units.push_back(std::make_unique<SpanUnit>(w.blocks[j + 1].name.c_str(), w.blocks[j + 1], j - 1, *links[j],
-                                               *links[j + 1], w, m.start[j]));
+                                               *links[j + 1], w, m.start[j], dram.get()));
     units.back()->handed = &m.handed[j], units.back()->valid = &m.valid[j];
   }
   setup.clk(clk), raster.clk(clk);
@@ -319,6 +392,7 @@ bool compare(const Workload& w, const Measured& m, std::string& report, size_t s
     if (j >= 2) {  // span blocks: their FIFOs
       check(a.fifo_cycles, b.fifo_cycles, a.name + " FIFO pixel-cycles");
       check(a.fifo_peak, b.fifo_peak, a.name + " FIFO peak");
+      check(a.memory_stall, b.memory_stall, a.name + " memory stall cycles");
     }
   }
   std::ostringstream head;

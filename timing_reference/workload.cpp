@@ -27,9 +27,21 @@ Workload read_workload(const std::string& path) {
       constexpr int64_t kMost = 1000000;
       if (!s || b.latency < 1 || b.ii < 1 || b.depth < 0 || b.latency > kMost || b.ii > kMost || b.depth > kMost)
         fail("expected: block <name> <latency> <ii> <depth>, latency and ii in 1 … 1000000, depth in 0 … 1000000");
+      if (s >> b.line_bytes) {  // a memory client's line and miss queue
+        if (!(s >> b.miss_queue) || b.line_bytes < 0 || b.line_bytes > 65536 || b.miss_queue < 0 ||
+            b.miss_queue > 65536)
+          fail("expected: block … <line_bytes> <miss_queue>, each in 0 … 65536");
+      }
       if (!w.triangles.empty()) fail("a block after the first triangle");
       if (w.blocks.size() >= 2 && b.depth < 1) fail("a span block's FIFO depth must be at least 1");
       w.blocks.push_back(b);
+    } else if (kind == "memory") {
+      MemorySpec m;
+      s >> m.latency >> m.bytes_per_cycle;
+      if (!s || m.latency < 1 || m.latency > 100000 || m.bytes_per_cycle < 1 || m.bytes_per_cycle > 4096)
+        fail("expected: memory <latency in 1 … 100000> <bytes_per_cycle in 1 … 4096>");
+      if (!w.triangles.empty()) fail("a memory record after the first triangle");
+      w.memory = m;
     } else if (kind == "t") {
       Triangle t;
       s >> t.id >> t.start >> t.handed;
@@ -46,12 +58,21 @@ Workload read_workload(const std::string& path) {
       p.work.resize(line_blocks - 1);
       p.start.resize(line_blocks), p.valid.resize(line_blocks), p.handed.resize(line_blocks);
       for (auto& x : p.work) s >> x;
+      if (w.memory) {
+        p.lines.resize(line_blocks - 1);
+        for (auto& x : p.lines) s >> x;
+      }
       for (size_t j = 0; j < line_blocks; ++j) s >> p.start[j] >> p.valid[j] >> p.handed[j];
       std::string extra;
       if (!s || p.hidden < 0 || p.hidden > 100000000 || (s >> extra))
         fail("expected: p <x> <y> <hidden> <a work per span block> <start valid handed per line block>");
       for (uint32_t x : p.work)
         if (x > 65535) fail("a pixel's work is at most 65535 units");
+      for (size_t j = 0; j < p.lines.size(); ++j) {
+        if (p.lines[j] > 65535) fail("a pixel moves at most 65535 lines at a block");
+        if (p.lines[j] > 0 && (w.blocks[j + 2].line_bytes == 0 || p.work[j] == 0))
+          fail("DRAM lines at a block that is no memory client, or that bypassed the pixel");
+      }
       w.pixels.push_back(std::move(p));
       ++w.triangles.back().pixels;
     } else if (kind == "e") {
@@ -63,7 +84,8 @@ Workload read_workload(const std::string& path) {
     } else if (kind == "stats") {
       BlockStatsLine b;
       s >> b.name >> b.busy >> b.starved >> b.blocked >> b.fifo_cycles >> b.fifo_peak;
-      if (!s) fail("expected: stats <name> <busy> <starved> <blocked> <fifo_cycles> <fifo_peak>");
+      if (!s) fail("expected: stats <name> <busy> <starved> <blocked> <fifo_cycles> <fifo_peak> [<memory_stall>]");
+      s >> b.memory_stall;
       w.stats.push_back(b);
     } else if (!kind.empty()) {
       fail("unknown record '" + kind + "'");
@@ -83,6 +105,12 @@ double serial_cycles(const Workload& w) {
     for (size_t j = 0; j < p.work.size(); ++j) bound += double(p.work[j]) * double(w.blocks[j + 2].ii);
   }
   for (const Triangle& t : w.triangles) bound += double(t.trailing) * double(w.blocks[1].ii);
+  if (w.memory)  // every request alone: its bytes at the DRAM's rate, then its latency
+    for (const Pixel& p : w.pixels)
+      for (size_t j = 0; j < p.lines.size(); ++j)
+        if (p.lines[j] > 0)
+          bound += double(p.lines[j]) * double(w.blocks[j + 2].line_bytes) / double(w.memory->bytes_per_cycle) +
+                   double(w.memory->latency) + 2;
   return bound;
 }
 

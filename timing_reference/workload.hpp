@@ -4,6 +4,7 @@
 // log (`shadetlm render --timing-log`, format in modules/common/timing.hpp) — with the
 // times the fast model gave, which the reference checks and never reads while it runs.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,12 +13,14 @@ namespace shadetlm::timing_reference {
 struct BlockSpec {
   std::string name;
   int64_t latency = 1, ii = 1, depth = 1;
+  int64_t line_bytes = 0, miss_queue = 0;  // a memory client's (line_bytes 0: none)
 };
 
 struct Pixel {
   int x = 0, y = 0;
   int64_t hidden = 0;                // the raster's hidden steps just before it
   std::vector<uint32_t> work;        // per span block (units of its II; 0: bypassed)
+  std::vector<uint32_t> lines;       // per span block: DRAM lines moved (a memory record only)
   std::vector<int64_t> start, valid, handed;  // the fast model's, per line block (raster first)
 };
 
@@ -31,10 +34,17 @@ struct Triangle {
 struct BlockStatsLine {
   std::string name;
   int64_t busy = 0, starved = 0, blocked = 0, fifo_cycles = 0, fifo_peak = 0;
+  int64_t memory_stall = 0;  // Σ cycles its pixels' data came after their work
+};
+
+// The shared DRAM (modules/memory/dram.hpp says what it does; this is its own model).
+struct MemorySpec {
+  int64_t latency = 0, bytes_per_cycle = 0;
 };
 
 struct Workload {
   std::vector<BlockSpec> blocks;  // setup, the raster, the span blocks
+  std::optional<MemorySpec> memory;  // none: ideal memory
   std::vector<Triangle> triangles;
   std::vector<Pixel> pixels;
   int64_t end = -1;                     // the fast model's (−1: no end record)

@@ -6,7 +6,7 @@ namespace shadetlm::modules {
 
 BlockDecl bump_fetch_block() {
   const std::vector<std::string> filters(filter_names().begin(), filter_names().begin() + 4);  // no EWA
-  return {"bump_fetch", {24, 1}, false,
+  BlockDecl d{"bump_fetch", {24, 1}, false,
           {{"filter", "trilinear", filters, 0, 0,
             "texture filter of the bump fetch (nearest and bilinear on the nearest mip level)"},
            {"probes", 4, {}, 1, 16, "anisotropic filter: trilinear probes along the footprint's major axis"},
@@ -16,9 +16,12 @@ BlockDecl bump_fetch_block() {
             BumpFetchKernel::Options o;
             o.filter = parse_filter(ctx.string("filter"));
             o.probes = ctx.integer("probes");
+            o.cache = cache_of(ctx);
             o.renormalize_mips = ctx.boolean("renormalize_mips");
             return std::make_unique<SpanBlock<BumpFetchKernel>>(ctx.scene, o);
           }};
+  d.memory = true;  // reads its maps through a cache (docs/memory.md)
+  return d;
 }
 
 }  // namespace shadetlm::modules

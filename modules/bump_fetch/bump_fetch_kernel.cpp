@@ -31,6 +31,11 @@ BumpFetchKernel::BumpFetchKernel(const core::Scene& scene, const Options& option
     }
     map_of_object_.push_back(map);
   }
+  if (options.cache) {  // the maps one after another in the unit's memory
+    memory_ = std::make_unique<MemoryClient>(*options.cache);
+    for (auto& map : maps_) place(map->mip, *memory_);
+    sampler_.set_memory(memory_.get());
+  }
   precompute_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -73,14 +78,15 @@ const BumpFetchKernel::Map& BumpFetchKernel::build(const core::Scene& scene, con
 void BumpFetchKernel::fetch(SpanPacket& p) {
   const TriangleSetup& t = *p.tri;
   if (!t.bump_frame) {  // no tangent frame: the unperturbed normal (+z), no derivatives
-    for (int i = 0; i < p.count; ++i) p.bump[0][i] = 0, p.bump[1][i] = 0, p.bump[2][i] = 1, work_[i] = 1;
+    for (int i = 0; i < p.count; ++i) p.bump[0][i] = 0, p.bump[1][i] = 0, p.bump[2][i] = 1, work_[i] = 1, lines_[i] = 0;
     if (capture_)
       for (int c = 0; c < 3; ++c)
         for (int i = 0; i < p.count; ++i) captured_[c][i] = 0;
     return;
   }
   const Map& map = *map_of_object_[size_t(t.object)];
-  sample_span(t, p, map.mip, sampler_, p.bump, ops_, uv_range_, work_, capture_ ? captured_ : nullptr);
+  sample_span(t, p, map.mip, sampler_, p.bump, ops_, uv_range_, work_, capture_ ? captured_ : nullptr,
+              memory_ ? lines_ : nullptr);
   for (int c = 0; c < 3; ++c) fetched_range_.add(p.bump[c], p.count);
 }
 

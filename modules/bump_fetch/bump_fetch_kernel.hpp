@@ -38,7 +38,9 @@ class BumpFetchKernel {
   // float32 datapaths; the non-finite values among the block's outputs.
   NumberStats numbers() const { return {"float32", nonfinite_, {}}; }
   const Ops& ops() const { return ops_; }
-  Work work(const SpanPacket&) const { return {work_, 0}; }  // four texels a cycle, at least one
+  // Four texels a cycle, at least one; the DRAM lines of each pixel under the DRAM model.
+  Work work(const SpanPacket&) const { return {work_, 0, memory_ ? lines_ : nullptr}; }
+  const MemoryClient* memory() const { return memory_.get(); }
   bool bypass(const SpanPacket& p) const { return !core::bump_path(p.tri->material->path); }
 
   double precompute_seconds() const { return precompute_s_; }
@@ -67,6 +69,8 @@ class BumpFetchKernel {
   std::vector<const Map*> map_of_object_;  // by object index; nullptr: no bump map
   double precompute_s_ = 0;
   uint16_t work_[kSpanMax];
+  std::unique_ptr<MemoryClient> memory_;  // none: ideal memory
+  uint16_t lines_[kSpanMax] = {};
   Ops ops_;
   ValueRange uv_range_, fetched_range_;
   bool capture_ = false;

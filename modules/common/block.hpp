@@ -160,6 +160,7 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
     s.busy_cycles = t.busy, s.starved_cycles = t.starved, s.blocked_cycles = t.blocked;
     s.fifo_cycles = t.fifo_cycles, s.fifo_peak = t.fifo_peak;
     s.fifo_measured = line_ != nullptr;
+    s.memory_stall_cycles = t.memory_stall;
     return s;
   }
   const Timing& timing() const override { return timing_; }

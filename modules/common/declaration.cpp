@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "shadetlm/core/input_error.hpp"
+
 namespace shadetlm::modules {
 
 std::vector<std::string> PipelineDecl::block_names() const {
@@ -23,6 +25,15 @@ std::vector<core::SettingSpec> PipelineDecl::all_settings() const {
         all.push_back({b.name + ".fifo_depth", b.timing.fifo_depth, {}, 1, 65536,
                        b.fifo == BlockDecl::Fifo::Triangles ? "triangles its input FIFO holds"
                                                              : "pixels its input FIFO holds"});
+      if (b.memory) {
+        all.push_back({b.name + ".cache.size", 16384, {}, 1, 1 << 30, "bytes of its cache (a power of two)"});
+        all.push_back({b.name + ".cache.line", 64, {}, 1, 1 << 16, "bytes of its cache's line (a power of two)"});
+        all.push_back({b.name + ".cache.ways", 4, {}, 1, 1 << 16, "its cache's associativity (dividing its lines)"});
+        all.push_back({b.name + ".cache.layout", "tiled", layout_names(), 0, 0,
+                       "how its surfaces lie in memory: linear, tiled (a line a tile) or morton"});
+        all.push_back({b.name + ".miss_queue", 64, {}, 0, 65536,
+                       "pixels it may hold waiting for memory, besides its pipeline registers"});
+      }
       if (b.formatted)
         all.push_back({b.name + ".format", "default", {}, 0, 0,
                        "number format of the block's datapath (default: pipeline.number_format)", true});
@@ -32,6 +43,19 @@ std::vector<core::SettingSpec> PipelineDecl::all_settings() const {
       }
     }
   return all;
+}
+
+std::optional<CacheConfig> cache_of(const BlockContext& ctx) {
+  if (ctx.settings.string("memory.model") == "ideal") return std::nullopt;
+  CacheConfig c;
+  c.size = uint64_t(ctx.integer("cache.size"));
+  c.line = uint32_t(ctx.integer("cache.line"));
+  c.ways = uint32_t(ctx.integer("cache.ways"));
+  c.layout = parse_layout(ctx.string("cache.layout"));
+  const CacheFault fault = check(c);
+  if (!fault.setting.empty())
+    throw core::InputError(ctx.scene.file, "pipeline." + ctx.name + ".cache." + fault.setting, fault.why);
+  return c;
 }
 
 void PipelineDecl::insert_after(const std::string& after, BlockDecl block) {

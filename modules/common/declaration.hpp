@@ -7,6 +7,7 @@
 // attachments are derived from that list; nothing else names a block.
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -17,6 +18,7 @@
 #include "shadetlm/modules/common/block.hpp"
 #include "shadetlm/modules/common/packet.hpp"
 #include "shadetlm/modules/common/report.hpp"
+#include "shadetlm/modules/memory/cache.hpp"
 
 namespace shadetlm::modules {
 
@@ -97,7 +99,15 @@ struct BlockDecl {
   // The arithmetic units on its critical path for its settings (a mode): their latency
   // is added to <name>.latency, and its II is at least theirs. Empty: none.
   std::function<Timing(const BlockContext&)> units = nullptr;
+  // A memory client (docs/memory.md): under pipeline.memory.model = dram it reads (or
+  // writes) through a cache of its own, <name>.cache.{size,line,ways,layout}, and may
+  // hold <name>.miss_queue pixels waiting for memory.
+  bool memory = false;
 };
+
+// A memory client's cache under the DRAM model; none under ideal memory. Throws
+// core::InputError naming the scene and the setting if it is not a cache.
+std::optional<CacheConfig> cache_of(const BlockContext& ctx);
 
 // An arithmetic unit's latency and II (pipeline.unit.<name>.latency and .ii, docs/
 // configuration.md "Arithmetic units").
@@ -130,13 +140,15 @@ template <class K, class = void> struct has_numbers : std::false_type {};
 template <class K> struct has_numbers<K, std::void_t<decltype(std::declval<const K&>().numbers())>> : std::true_type {};
 template <class K, class = void> struct has_details : std::false_type {};
 template <class K> struct has_details<K, std::void_t<decltype(std::declval<const K&>().details())>> : std::true_type {};
+template <class K, class = void> struct has_memory : std::false_type {};
+template <class K> struct has_memory<K, std::void_t<decltype(std::declval<const K&>().memory())>> : std::true_type {};
 template <class K, class = void> struct has_precompute : std::false_type {};
 template <class K>
 struct has_precompute<K, std::void_t<decltype(std::declval<const K&>().precompute_seconds())>> : std::true_type {};
 
 // A span block (Stage<K> in SystemC): K has process, bypass, work, ops, trace_names,
 // trace and set_capture (modules/README.md), and may have ranges(), numbers(),
-// details() (JSON), precompute_seconds() and end_pass(PassEnd&), which are reported
+// details() (JSON), precompute_seconds(), memory() and end_pass(PassEnd&), which are reported
 // or called where present.
 template <class K>
 class SpanBlock : public KernelBlock<K, Stage<K>> {
@@ -157,6 +169,13 @@ class SpanBlock : public KernelBlock<K, Stage<K>> {
     if constexpr (has_numbers<K>::value) b.numbers = kernel.numbers();
     if constexpr (has_details<K>::value) b.details = kernel.details();
     if constexpr (has_precompute<K>::value) r.precompute_s += kernel.precompute_seconds();
+    if constexpr (has_memory<K>::value) {
+      if (const MemoryClient* m = kernel.memory()) {
+        // What is dirty at the frame's end is written back then.
+        b.stats.memory = MemoryStats{m->cache().config(), m->cache().counts(), m->cache().dirty_lines(),
+                                     b.stats.memory_stall_cycles};
+      }
+    }
   }
 };
 

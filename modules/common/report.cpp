@@ -49,6 +49,19 @@ nlohmann::json RenderResult::stats_json() const {
         bj["fifo_mean"] = double(b.stats.fifo_cycles) / double(frame_cycles);
       }
     }
+    if (b.stats.memory) {  // docs/memory.md
+      const MemoryStats& m = *b.stats.memory;
+      const Cache::Counts& c = m.counts;
+      bj["memory"] = {{"cache", {{"size", m.cache.size}, {"line", m.cache.line}, {"ways", m.cache.ways},
+                                 {"layout", layout_names()[size_t(m.cache.layout)]}}},
+                      {"accesses", c.accesses},
+                      {"hits", c.hits},
+                      {"misses", c.misses},
+                      {"writebacks", c.writebacks + m.flushed},
+                      {"hit_rate", c.accesses > 0 ? double(c.hits) / double(c.accesses) : 1.0},
+                      {"dram_bytes", m.dram_bytes()},
+                      {"stall_cycles", m.stall_cycles}};
+    }
     if (!b.ranges.empty()) bj["ranges"] = to_json(b.ranges);
     if (!b.details.is_null()) bj["details"] = b.details;
     if (b.numbers) {
@@ -62,6 +75,21 @@ nlohmann::json RenderResult::stats_json() const {
     j["blocks"][b.name] = bj;
   }
   j["numbers"] = numbers;
+  // The shared memory: DRAM bytes by client, and per shaded pixel (docs/memory.md).
+  nlohmann::json memory = {{"model", dram ? "dram" : "ideal"}};
+  if (dram) {
+    uint64_t bytes = 0;
+    nlohmann::json by_client = nlohmann::json::object();
+    for (const auto& b : blocks)
+      if (b.stats.memory) bytes += b.stats.memory->dram_bytes(), by_client[b.name] = b.stats.memory->dram_bytes();
+    const double shaded = double(std::max<uint64_t>(pixels_shaded, 1));
+    memory["latency"] = dram->latency, memory["bytes_per_cycle"] = dram->bytes_per_cycle;
+    memory["dram_bytes"] = bytes;
+    memory["dram_bytes_per_shaded_pixel"] = double(bytes) / shaded;
+    memory["dram_bytes_by_client"] = by_client;
+    memory["bandwidth_use"] = frame_cycles > 0 ? double(bytes) / (double(frame_cycles) * double(dram->bytes_per_cycle)) : 0.0;
+  }
+  j["memory"] = memory;
   if (bin_cycles > 0 && frame_cycles > 0) {
     // Utilization over time: each block's busy share of every bin, and the busiest
     // block per bin.

@@ -11,6 +11,8 @@
 #include "shadetlm/modules/common/number.hpp"
 #include "shadetlm/modules/common/ops.hpp"
 #include "shadetlm/modules/common/range.hpp"
+#include "shadetlm/modules/memory/cache.hpp"
+#include "shadetlm/modules/memory/dram.hpp"
 
 namespace shadetlm::modules {
 
@@ -19,6 +21,20 @@ struct Timing {
   uint64_t latency = 1;     // cycles from a pixel's start to its hand-over, when nothing waits
   uint64_t ii = 1;          // cycles per unit of work (initiation interval)
   uint64_t fifo_depth = 8;  // pixels its input FIFO holds (triangles for the raster)
+  // A memory client under the DRAM model (docs/memory.md): the bytes of its cache's line
+  // (0: it moves nothing, or memory is ideal) and the pixels it may hold waiting for
+  // memory besides its pipeline registers (its latency-hiding queue).
+  uint64_t line_bytes = 0;
+  uint64_t miss_queue = 0;
+};
+
+// A memory client's figures under the DRAM model (docs/memory.md).
+struct MemoryStats {
+  CacheConfig cache;
+  Cache::Counts counts;
+  uint64_t flushed = 0;       // dirty lines written back at the frame's end
+  uint64_t stall_cycles = 0;  // Σ over its pixels of the cycles their data came after their work
+  uint64_t dram_bytes() const { return (counts.misses + counts.writebacks + flushed) * cache.line; }
 };
 
 struct BlockStats {
@@ -27,6 +43,8 @@ struct BlockStats {
   uint64_t fifo_cycles = 0, fifo_peak = 0;          // Σ pixel-cycles in its input FIFO; the most it held
   bool fifo_measured = false;                       // a FIFO of pixels before it, measured
   Ops ops;
+  std::optional<MemoryStats> memory;                // a memory client under the DRAM model
+  uint64_t memory_stall_cycles = 0;                 // the timing's (MemoryStats::stall_cycles)
 };
 
 struct BlockReport {
@@ -53,6 +71,7 @@ struct RenderResult {
   uint64_t trace_records = 0;       // pixels written to the VCD, all blocks
   std::string timing_log;           // Inspect::timing_log: the main pass's times (modules/common/timing.hpp)
   double precompute_s = 0;          // maps built when the pipeline was (not in wall_s)
+  std::optional<DramTiming> dram;   // the DRAM model's (none: ideal memory)
   uint64_t nonfinite_replaced = 0;   // NaN or infinite colour, normal, depth or specular values that reached the framebuffer (replaced)
 
   const BlockReport* bottleneck() const;  // the block with the most busy cycles

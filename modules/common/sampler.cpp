@@ -55,8 +55,16 @@ constexpr Ops kOpsLevelBlend{/*add*/ 7, /*mul*/ 3};
 
 }  // namespace
 
+void place(MipMap& map, MemoryClient& memory) {
+  map.surfaces.clear();
+  for (const core::Texture* t : map.levels) map.surfaces.push_back(memory.place(t->width, t->height, 4));
+}
+
 void Sampler::touch(int level, int x, int y) {
-  const uint64_t line = (uint64_t(level) << 48) | (uint64_t(uint32_t(y) >> 2) << 24) | uint64_t(uint32_t(x) >> 2);
+  const uint64_t line =
+      memory_ ? address(memory_->layout(), map_->surfaces[size_t(level)], memory_->line_bytes(), x, y) /
+                    memory_->line_bytes()
+              : (uint64_t(level) << 48) | (uint64_t(uint32_t(y) >> 2) << 24) | uint64_t(uint32_t(x) >> 2);
   for (int k = 0; k < line_count_; ++k)
     if (lines_[k] == line) return;
   if (line_count_ < int(std::size(lines_))) lines_[line_count_++] = line;
@@ -171,6 +179,7 @@ void Sampler::ewa(const MipMap& map, float u, float v, float ax, float ay, float
 void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx, float dudy, float dvdy,
                      float out[3], Ops& ops) {
   line_count_ = 0;
+  map_ = &map;
   const uint64_t fetches_before = ops.fetch;
   const core::Texture& base = *map.levels.front();
   const float W = float(base.width), H = float(base.height);
@@ -220,6 +229,8 @@ void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx
     }
   }
   ops.line += uint64_t(line_count_);
+  if (memory_)
+    for (int k = 0; k < line_count_; ++k) memory_->read_line(lines_[k]);
   cycles_ += std::max<uint64_t>(1, (ops.fetch - fetches_before + 3) / 4);
 }
 
@@ -229,7 +240,7 @@ namespace shadetlm::modules {
 
 void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map, Sampler& sampler,
                  float out[3][kSpanMax], Ops& ops, ValueRange& uv_range, uint16_t cycles[kSpanMax],
-                 float (*uv_lod)[kSpanMax]) {
+                 float (*uv_lod)[kSpanMax], uint16_t* lines) {
   const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
   float u_w = t.uv[0].at(dx, dy), v_w = t.uv[1].at(dx, dy);
   uv_range.add_span(u_w, t.uv[0].ax, p.count, p.w);
@@ -244,6 +255,7 @@ void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map,
     const uint64_t before = sampler.cycles();
     sampler.sample(map, u, v, dudx, dvdx, dudy, dvdy, value, ops);
     cycles[i] = uint16_t(std::min<uint64_t>(sampler.cycles() - before, 65535));
+    if (lines) lines[i] = sampler.memory()->take_pixel_lines();
     for (int c = 0; c < 3; ++c) out[c][i] = value[c];
     if (uv_lod) uv_lod[0][i] = u, uv_lod[1][i] = v, uv_lod[2][i] = sampler.last_lod();
   }

@@ -16,8 +16,12 @@
 // with the addressing convention of core/texture.hpp (texel centres, wrap modes). It
 // counts what the hardware spends: texel fetches, and the memory lines they touch —
 // texels stored in 4×4 tiles, one 64-byte line per tile of 32-bit texels, counted once
-// per pixel (a line buffer shared by a pixel's probes, no cache between pixels).
+// per pixel (a line buffer shared by a pixel's probes, no cache between pixels). Under
+// the DRAM model (docs/memory.md) the lines are those of the unit's cache and layout,
+// and each pixel's lines are read through its cache.
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +29,7 @@
 #include "shadetlm/modules/common/ops.hpp"
 #include "shadetlm/modules/common/packet.hpp"
 #include "shadetlm/modules/common/range.hpp"
+#include "shadetlm/modules/memory/cache.hpp"
 
 namespace shadetlm::modules {
 
@@ -33,20 +38,28 @@ enum class Filter { Nearest, Bilinear, Trilinear, Anisotropic, Ewa };
 const std::vector<std::string>& filter_names();
 Filter parse_filter(const std::string& name);
 
-// The filter a texture unit applies (pipeline.<block>.filter and .probes).
+// The filter a texture unit applies (pipeline.<block>.filter and .probes), and its
+// cache under the DRAM model (none: ideal memory).
 struct FilterSetting {
   Filter filter = Filter::Trilinear;
   int probes = 4;
+  std::optional<CacheConfig> cache;
 };
 
 // A texture and its mip levels, finest first.
 struct MipMap {
   std::vector<const core::Texture*> levels;
+  std::vector<Surface> surfaces;  // where each level lies in the unit's memory (DRAM model)
 };
+// Places every level of `map` in `memory` (32-bit texels).
+void place(MipMap& map, MemoryClient& memory);
 
 class Sampler {
  public:
   Sampler(Filter filter, int probes) : filter_(filter), probes_(filter == Filter::Anisotropic ? probes : 1) {}
+  // Reads each pixel's lines through `memory` (the DRAM model; the maps placed in it).
+  void set_memory(MemoryClient* memory) { memory_ = memory; }
+  MemoryClient* memory() const { return memory_; }
 
   // The filtered first three channels at (u, v); d*dx and d*dy are the derivatives of
   // u and v per pixel step right and down. Adds its operations to `ops`.
@@ -71,6 +84,8 @@ class Sampler {
   Filter filter_;
   int probes_;
   float lod_ = 0;
+  MemoryClient* memory_ = nullptr;
+  const MipMap* map_ = nullptr;  // of the current sample
   uint64_t lines_[256];  // the lines touched by the current pixel
   int line_count_ = 0;
   uint64_t cycles_ = 0;
@@ -80,10 +95,11 @@ class Sampler {
 // its derivatives along x and y, ((∂(u/w) − u ∂(1/w)) · w), and the filtered value into
 // out[0..2][i]. `lod` (if not null) receives each pixel's LOD. Shared by the bump fetch
 // and the colour texture's fetch.
-// `cycles` receives each pixel's cycles in the texture unit.
+// `cycles` receives each pixel's cycles in the texture unit, `lines` (if not null: the
+// sampler has a memory) the DRAM lines it moved.
 void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map, Sampler& sampler,
                  float out[3][kSpanMax], Ops& ops, ValueRange& uv_range, uint16_t cycles[kSpanMax],
-                 float (*uv_lod)[kSpanMax] = nullptr);
+                 float (*uv_lod)[kSpanMax] = nullptr, uint16_t* lines = nullptr);
 // Per pixel outside the filter: uv (2 mul, 2 add) and its four derivatives (2 mul, 1 add
 // each); per span, two plane seeds.
 constexpr Ops kOpsSpanUvPerPixel{/*add*/ 6, /*mul*/ 10};

@@ -22,13 +22,15 @@ uint64_t ring_above(uint64_t n) {
 }
 }  // namespace
 
-PixelLine::PixelLine(std::vector<Timing> blocks) {
+PixelLine::PixelLine(std::vector<Timing> blocks, DramTiming dram) {
   uint64_t reach = 1;  // the furthest back a term looks, in pixels
   for (size_t j = 0; j < blocks.size(); ++j) {
     Slot s;
     s.timing = blocks[j];
     s.capacity = int64_t(capacity(blocks[j]));
     s.next_depth = j + 1 < blocks.size() ? int64_t(blocks[j + 1].fifo_depth) : 0;
+    s.line_bytes = j > 0 ? blocks[j].line_bytes : 0;  // (the raster's depth traffic: not modelled yet)
+    if (s.line_bytes > 0 && !dram_) dram_ = std::make_unique<Dram>(dram);
     reach = std::max({reach, uint64_t(s.capacity), uint64_t(s.next_depth), blocks[j].fifo_depth});
     blocks_.push_back(s);
   }
@@ -67,7 +69,7 @@ void PixelLine::walk_hidden(uint64_t steps) {
 }
 
 // The pixels of the packet, pixel by pixel, block by block (timing.hpp's recurrence).
-template <bool kInspect>
+template <bool kInspect, bool kMemory>
 void PixelLine::sweep_pixels(int count) {
   const size_t blocks = blocks_.size();
   for (int i = 0; i < count; ++i, ++n_) {
@@ -79,6 +81,7 @@ void PixelLine::sweep_pixels(int count) {
     if constexpr (kInspect) r.t.add_busy(s, uint64_t(r.ii));
     else r.t.busy += uint64_t(r.ii);
     r.free = s + r.ii;
+    if constexpr (kMemory) dram_->forget_before(s);  // every later request is made after s
     int64_t d = std::max(std::max(s + r.latency, r.t.last + 1), r.next_s[(n_ - uint64_t(r.next_depth)) & ring_mask_] + 1);
     if constexpr (kInspect) times_[0][size_t(i)] = {s, d, std::max(s + r.latency, r.t.last + 1), 0};
     r.s[slot] = s, r.d[slot] = d, r.t.last = d;
@@ -98,7 +101,15 @@ void PixelLine::sweep_pixels(int count) {
       if constexpr (kInspect) b.t.add_busy(s, uint64_t(o));
       else b.t.busy += uint64_t(o);
       b.free = s + o;
-      const int64_t f = b.free + (w > 0 ? b.latency - b.ii : 0);
+      int64_t f = b.free + (w > 0 ? b.latency - b.ii : 0);
+      if constexpr (kMemory) {
+        if (const uint32_t lines = b.work.lines_at(i); lines > 0) {  // its data from the DRAM
+          const int64_t back = dram_->request(s, uint64_t(lines) * b.line_bytes);
+          b.t.memory_stall += uint64_t(std::max<int64_t>(back + b.latency - f, 0));
+          b.t.dram_lines += lines;
+          f = std::max(f, back + b.latency);
+        }
+      }
       const int64_t valid = std::max(f, b.t.last + 1);
       d = std::max(valid, b.next_s[(n_ - uint64_t(b.next_depth)) & ring_mask_] + 1);
       if constexpr (kInspect) times_[j][size_t(i)] = {s, d, valid, n_ + 1 - uint64_t(b.head)};
@@ -126,8 +137,13 @@ void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before) {
   // that the common one carries no test for it.
   bool inspect = keep_times;
   for (const Slot& b : blocks_) inspect = inspect || b.t.bin_cycles > 0;
-  if (inspect) sweep_pixels<true>(count);
-  else sweep_pixels<false>(count);
+  if (dram_) {
+    if (inspect) sweep_pixels<true, true>(count);
+    else sweep_pixels<false, true>(count);
+  } else {
+    if (inspect) sweep_pixels<true, false>(count);
+    else sweep_pixels<false, false>(count);
+  }
   if (log_) log_->pixels(p, hidden_before, *this);
   for (TimedObserver* o : observers_) o->timed(p);
 }
@@ -178,7 +194,10 @@ void TriangleLine::taken(int64_t cycle) {
 
 void TimingLog::block(const std::string& name, const Timing& t) {
   text_ += "block " + name + " " + std::to_string(t.latency) + " " + std::to_string(t.ii) + " " +
-           std::to_string(t.fifo_depth) + "\n";
+           std::to_string(t.fifo_depth) + " " + std::to_string(t.line_bytes) + " " + std::to_string(t.miss_queue) + "\n";
+}
+void TimingLog::memory(const DramTiming& t) {
+  text_ += "memory " + std::to_string(t.latency) + " " + std::to_string(t.bytes_per_cycle) + "\n";
 }
 void TimingLog::triangle(uint32_t id, int64_t start, int64_t handed) {
   text_ += "t " + std::to_string(id) + " " + std::to_string(start) + " " + std::to_string(handed) + "\n";
@@ -188,13 +207,15 @@ void TimingLog::trailing(uint64_t steps) { text_ += "e " + std::to_string(steps)
 void TimingLog::end(int64_t cycle) { text_ += "end " + std::to_string(cycle) + "\n"; }
 void TimingLog::stats(const std::string& name, const BlockTimes& t) {
   text_ += "stats " + name + " " + std::to_string(t.busy) + " " + std::to_string(t.starved) + " " +
-           std::to_string(t.blocked) + " " + std::to_string(t.fifo_cycles) + " " + std::to_string(t.fifo_peak) + "\n";
+           std::to_string(t.blocked) + " " + std::to_string(t.fifo_cycles) + " " + std::to_string(t.fifo_peak) + " " + std::to_string(t.memory_stall) + "\n";
 }
 void TimingLog::pixels(const SpanPacket& p, uint64_t hidden, const PixelLine& line) {
   for (int i = 0; i < p.count; ++i) {
     text_ += "p " + std::to_string(p.x0 + i) + " " + std::to_string(p.y) + " " +
              std::to_string(i == 0 ? hidden : 0);
     for (size_t j = 1; j < line.size(); ++j) text_ += " " + std::to_string(line.work(int(j)).at(i));
+    if (line.dram())
+      for (size_t j = 1; j < line.size(); ++j) text_ += " " + std::to_string(line.work(int(j)).lines_at(i));
     for (size_t j = 0; j < line.size(); ++j)
       text_ += " " + std::to_string(line.start(int(j), i)) + " " + std::to_string(line.valid_from(int(j), i)) + " " +
                std::to_string(line.handed(int(j), i));

@@ -24,19 +24,28 @@
 // pixel-major order (for each pixel, for each block). The raster (block 0) walks: its
 // pixel n starts when the walk reaches it and a register is free; hidden pixels cost a
 // step each and need no register (start_triangle, walk_hidden, sweep).
+//
+// Memory (docs/memory.md): a memory client whose pixel moved m > 0 cache lines asks the
+// shared DRAM for them as it starts the pixel; the data is back at r (modules/memory/
+// dram.hpp), and the pixel is done at f_j(n) = max(s_j(n) + II·(w − 1), r) + L. Its
+// miss queue of Q pixels adds Q to C: the pixels a block can hold while they wait.
 #include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "shadetlm/modules/common/packet.hpp"
 #include "shadetlm/modules/common/report.hpp"
+#include "shadetlm/modules/memory/dram.hpp"
 
 namespace shadetlm::modules {
 
 // The pixels a block may hold between starting them and handing them on.
-inline uint64_t capacity(const Timing& t) { return (t.latency + 1 + t.ii - 1) / t.ii; }
+inline uint64_t capacity(const Timing& t) {
+  return (t.latency + 1 + t.ii - 1) / t.ii + (t.line_bytes > 0 ? t.miss_queue : 0);
+}
 
 // What a block's timing counted (BlockStats holds the same, reported).
 struct BlockTimes {
@@ -45,6 +54,8 @@ struct BlockTimes {
   uint64_t blocked = 0;      // free, every register full: waiting for room downstream
   uint64_t fifo_cycles = 0;  // Σ over its pixels of the cycles they spent in its input FIFO
   uint64_t fifo_peak = 0;    // the most pixels its input FIFO held at the end of a cycle
+  uint64_t memory_stall = 0; // Σ over its pixels of the cycles their data came after their work
+  uint64_t dram_lines = 0;   // cache lines its pixels moved to or from the DRAM
   int64_t last = -1;         // the cycle it handed on its last pixel
   uint64_t bin_cycles = 0;   // of busy_per_bin (0: not kept)
   std::vector<uint64_t> busy_per_bin;
@@ -70,19 +81,24 @@ class PixelLine;
 // timing check against the clocked reference (timing_reference/, docs/pipeline.md): a
 // text file, one line a record, kept in memory until written (small frames only).
 //
-//   block <name> <latency> <ii> <fifo_depth>       setup, the raster, then each span block
+//   block <name> <latency> <ii> <fifo_depth> <line_bytes> <miss_queue>
+//                                                 setup, the raster, then each span block
+//   memory <latency> <bytes_per_cycle>             the DRAM (none: ideal memory)
 //   t <triangle> <start> <handed>                 setup hands a triangle on
 //   r <cycle>                                     the raster takes it
-//   p <x> <y> <hidden> <w_1> … <w_J> <s_0> <v_0> <d_0> … <s_J> <v_J> <d_J>
+//   p <x> <y> <hidden> <w_1> … <w_J> [<m_1> … <m_J>] <s_0> <v_0> <d_0> … <s_J> <v_J> <d_J>
 //                                                 a pixel: hidden steps walked before it,
-//                                                 its work at each span block, its start,
-//                                                 valid (at the output) and hand-over
+//                                                 its work at each span block, the DRAM
+//                                                 lines it moved at each (with a memory
+//                                                 record), its start, valid (at the
+//                                                 output) and hand-over
 //   e <steps>                                     hidden steps after the triangle's last pixel
 //   end <cycle>                                   the pass's end
-//   stats <name> <busy> <starved> <blocked> <fifo_cycles> <fifo_peak>
+//   stats <name> <busy> <starved> <blocked> <fifo_cycles> <fifo_peak> <memory_stall>
 class TimingLog {
  public:
   void block(const std::string& name, const Timing& t);
+  void memory(const DramTiming& t);
   void triangle(uint32_t id, int64_t start, int64_t handed);
   void taken(int64_t cycle);
   void pixels(const SpanPacket& p, uint64_t hidden, const PixelLine& line);
@@ -98,7 +114,8 @@ class TimingLog {
 // The main pass's pixel stream: the raster (slot 0) and the span blocks after it.
 class PixelLine {
  public:
-  explicit PixelLine(std::vector<Timing> blocks);
+  // `dram`: the shared DRAM's timing, when a block is a memory client (line_bytes > 0).
+  explicit PixelLine(std::vector<Timing> blocks, DramTiming dram = {});
   PixelLine(const PixelLine&) = delete;  // its blocks point into its rings
   PixelLine& operator=(const PixelLine&) = delete;
 
@@ -118,6 +135,8 @@ class PixelLine {
   void set_log(TimingLog* log) { log_ = log, keep_times = keep_times || log; }
   TimingLog* log() const { return log_; }
   Work work(int slot) const { return blocks_[size_t(slot)].work; }
+  const Dram* dram() const { return dram_.get(); }
+  Dram* dram() { return dram_.get(); }
 
   // The times of the packet swept last, pixel i at block j: its start, the cycle it was
   // at the block's output (valid: done, the pixel before it gone), its hand-over (a
@@ -143,6 +162,7 @@ class PixelLine {
     int64_t free = 0;        // the cycle its unit can issue again
     int64_t head = 0;        // the oldest pixel still in its FIFO (for the peak)
     int64_t ii = 1, latency = 1;
+    uint64_t line_bytes = 0;
     int64_t *s = nullptr, *d = nullptr;  // the starts and hand-overs of its last pixels (rings)
     int64_t* next_s = nullptr;           // the next block's starts (after the last: always room)
     Work work;
@@ -154,7 +174,7 @@ class PixelLine {
     int64_t s, d, v;
     uint64_t q;
   };
-  template <bool kInspect> void sweep_pixels(int count);
+  template <bool kInspect, bool kMemory> void sweep_pixels(int count);
 
   std::vector<Slot> blocks_;
   std::vector<int64_t> ring_;  // per block: the starts, then the hand-overs of the last pixels
@@ -164,6 +184,7 @@ class PixelLine {
   std::vector<std::vector<Times>> times_;
   std::vector<TimedObserver*> observers_;
   TimingLog* log_ = nullptr;
+  std::unique_ptr<Dram> dram_;  // none: ideal memory
 };
 
 // Setup's triangles into the raster's triangle FIFO: triangle k starts when setup's unit

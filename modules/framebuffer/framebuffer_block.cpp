@@ -23,11 +23,13 @@ bool has_texture_object(const core::Scene& scene) {
 }  // namespace
 
 BlockDecl framebuffer_block() {
-  return {"framebuffer", {2, 1}, false, {}, {}, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
-            // Texture-object materials are resolved by a later pass over the frame: keep
-            // what it needs (the visible triangle and specular term per pixel).
-            return std::make_unique<FramebufferBlock>(ctx.scene, has_texture_object(ctx.scene));
-          }};
+  BlockDecl d{"framebuffer", {2, 1}, false, {}, {}, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
+                // Texture-object materials are resolved by a later pass over the frame: keep
+                // what it needs (the visible triangle and specular term per pixel).
+                return std::make_unique<FramebufferBlock>(ctx.scene, has_texture_object(ctx.scene), cache_of(ctx));
+              }};
+  d.memory = true;  // writes colour through a cache (docs/memory.md)
+  return d;
 }
 
 }  // namespace shadetlm::modules

@@ -6,8 +6,12 @@
 
 namespace shadetlm::modules {
 
-FramebufferKernel::FramebufferKernel(const core::Scene& scene, bool deferred)
+FramebufferKernel::FramebufferKernel(const core::Scene& scene, bool deferred, std::optional<CacheConfig> cache)
     : frame_(scene.camera.width, scene.camera.height) {
+  if (cache) {
+    memory_ = std::make_unique<MemoryClient>(*cache);
+    colour_ = memory_->place(scene.camera.width, scene.camera.height, kColourBytes);
+  }
   if (deferred) {
     visible_.assign(frame_.pixel_count(), 0);
     specular_.assign(frame_.pixel_count() * 3, 0.0f);
@@ -71,6 +75,11 @@ void FramebufferKernel::process(SpanPacket& p) {
         for (int i = 0; i < n; ++i)
           if (!std::isfinite(p.spec[c][i])) p.spec[c][i] = 0.0f;
   }
+  if (memory_)
+    for (int i = 0; i < n; ++i) {
+      memory_->access(colour_, p.x0 + i, p.y, true);
+      lines_[i] = memory_->take_pixel_lines();
+    }
   if (visible_.empty()) return;
   for (int i = 0; i < p.count; ++i) {
     const size_t at = base + i;

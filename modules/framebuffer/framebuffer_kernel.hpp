@@ -3,12 +3,15 @@
 // of the frame, laid out as the golden model's (docs/golden-model.md), and the parallax
 // tracer's iterations per pixel where a scene has a parallax material. Depth testing
 // happened early, in the raster block; a later packet at the same pixel is nearer.
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "shadetlm/core/frame.hpp"
 #include "shadetlm/modules/common/number.hpp"
 #include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/memory/cache.hpp"
 
 namespace shadetlm::modules {
 
@@ -16,11 +19,17 @@ class FramebufferKernel {
  public:
   // deferred: keep, per pixel, the visible scene triangle and the specular term of
   // texture-object materials, for texel_project's second pass.
-  explicit FramebufferKernel(const core::Scene& scene, bool deferred = false);
+  // cache: the colour buffer's cache under the DRAM model (docs/memory.md; none: ideal
+  // memory), RGBA in half floats (8 bytes a pixel), written back.
+  explicit FramebufferKernel(const core::Scene& scene, bool deferred = false,
+                             std::optional<CacheConfig> cache = std::nullopt);
 
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
-  Work work(const SpanPacket&) const { return {nullptr, 1}; }  // a pixel a cycle
+  // A pixel a cycle; the DRAM lines of each pixel's colour write under the DRAM model.
+  Work work(const SpanPacket&) const { return {nullptr, 1, memory_ ? lines_ : nullptr}; }
+  const MemoryClient* memory() const { return memory_.get(); }
+  static constexpr uint32_t kColourBytes = 8;
   bool bypass(const SpanPacket&) const { return false; }
   // Waveforms: what is written.
   void set_capture(bool) {}
@@ -49,6 +58,9 @@ class FramebufferKernel {
   float* layer_[8];  // R, G, B, A, Z, N.X, N.Y, N.Z
   float* iterations_ = nullptr;  // parallax.iterations, if the scene has a parallax material
   Ops ops_;           // stores only: no arithmetic
+  std::unique_ptr<MemoryClient> memory_;  // none: ideal memory
+  Surface colour_;
+  uint16_t lines_[kSpanMax] = {};
 };
 
 }  // namespace shadetlm::modules

@@ -28,6 +28,12 @@ PipelineDecl standard_pipeline() {
        "number format of every datapath: float32, float16 or fixed:I.F (docs/numerical-stability.md)", true},
       {"elaborate", "needed", {"needed", "all"}, 0, 0,
        "elaborate the blocks some material needs, or every block (to measure what skipping saves)"},
+      // Memory (docs/memory.md): ideal (every access hits, no bandwidth limit) or the
+      // memory clients' caches in front of one shared DRAM.
+      {"memory.model", "ideal", {"ideal", "dram"}, 0, 0,
+       "ideal memory, or caches and a shared DRAM (docs/memory.md)"},
+      {"memory.latency", 200, {}, 1, 100000, "cycles from a DRAM request's last byte to its data in the block"},
+      {"memory.bytes_per_cycle", 32, {}, 1, 4096, "the DRAM's bandwidth, shared by its clients"},
   };
   // The arithmetic units (docs/configuration.md, "Arithmetic units"): single-precision
   // latency and reciprocal throughput of Intel Skylake's ADDSS, MULSS, DIVSS, SQRTSS and
@@ -87,6 +93,10 @@ Pipeline::Pipeline(const core::Scene& scene, const PipelineDecl& declaration)
       if (!all && b.needed && !b.needed(scene)) continue;
       Timing timing{uint64_t(settings_.integer(b.name + ".latency")), uint64_t(settings_.integer(b.name + ".ii")), 0};
       if (b.fifo != BlockDecl::Fifo::None) timing.fifo_depth = uint64_t(settings_.integer(b.name + ".fifo_depth"));
+      if (b.memory && settings_.string("memory.model") == "dram") {
+        timing.line_bytes = uint64_t(settings_.integer(b.name + ".cache.line"));
+        timing.miss_queue = uint64_t(settings_.integer(b.name + ".miss_queue"));
+      }
       if (b.units) {
         const Timing units = b.units(BlockContext{scene, settings_, b.name});
         timing.latency += units.latency;
@@ -117,11 +127,13 @@ class Top : public sc_core::sc_module {
     std::vector<Timing> line;
     for (size_t i = 1; i < modules_.size() && pipeline.blocks()[i].block->kind() != Block::Kind::Frame; ++i)
       line.push_back(pipeline.blocks()[i].timing);
-    line_ = std::make_unique<PixelLine>(line);
+    const DramTiming dram = pipeline.dram().value_or(DramTiming{});
+    line_ = std::make_unique<PixelLine>(line, dram);
     if (inspect.timing_log) {
       log_ = std::make_unique<TimingLog>();
       line_->set_log(log_.get());
       for (size_t i = 0; i <= line.size(); ++i) log_->block(pipeline.blocks()[i].name, pipeline.blocks()[i].timing);
+      if (line_->dram()) log_->memory(dram);
     }
     for (size_t i = 0; i <= line.size(); ++i) modules_[i]->join_line(line_.get(), int(i) - 1);
 
@@ -179,6 +191,7 @@ RenderResult run_loop(Pipeline& pipeline, const Inspect& inspect) {
   RenderResult r;
   r.engine = "loop";
   r.clock_mhz = pipeline.clock_mhz();
+  r.dram = pipeline.dram();
   const auto start = std::chrono::steady_clock::now();
   blocks[0].block->run_pass(*blocks[1].block, chain);
   r.pixels_shaded = chain.pixels;
@@ -213,6 +226,7 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
   RenderResult r;
   r.engine = "systemc";
   r.clock_mhz = clock_mhz;
+  r.dram = pipeline.dram();
   const auto start = std::chrono::steady_clock::now();
   sc_core::sc_start();
   r.wall_s = seconds_since(start);

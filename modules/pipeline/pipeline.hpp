@@ -42,6 +42,11 @@ class Pipeline {
   };
   std::vector<Elaborated>& blocks() { return blocks_; }
   const core::Settings& settings() const { return settings_; }
+  // The DRAM's timing under pipeline.memory.model = dram (none: ideal memory).
+  std::optional<DramTiming> dram() const {
+    if (settings_.string("memory.model") == "ideal") return std::nullopt;
+    return DramTiming{uint64_t(settings_.integer("memory.latency")), uint64_t(settings_.integer("memory.bytes_per_cycle"))};
+  }
   const core::Scene& scene() const { return scene_; }
   double clock_mhz() const { return clock_mhz_; }
 

@@ -5,7 +5,7 @@
 namespace shadetlm::modules {
 
 BlockDecl texture_fetch_block() {
-  return {"texture_fetch", {8, 1}, false,
+  BlockDecl d{"texture_fetch", {8, 1}, false,
           {{"filter", "trilinear", filter_names(), 0, 0, "screen-space filter of texture-screen materials"},
            {"probes", 4, {}, 1, 16, "anisotropic filter: trilinear probes along the footprint's major axis"}},
           TextureFetchKernel::needed,
@@ -13,8 +13,11 @@ BlockDecl texture_fetch_block() {
             TextureFetchKernel::Options o;
             o.filter = parse_filter(ctx.string("filter"));
             o.probes = ctx.integer("probes");
+            o.cache = cache_of(ctx);
             return std::make_unique<SpanBlock<TextureFetchKernel>>(ctx.scene, o);
           }};
+  d.memory = true;  // reads its maps through a cache (docs/memory.md)
+  return d;
 }
 
 }  // namespace shadetlm::modules

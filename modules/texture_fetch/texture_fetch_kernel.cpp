@@ -28,11 +28,36 @@ TextureFetchKernel::TextureFetchKernel(const core::Scene& scene, const Options& 
     map.levels.push_back(&base);
     for (const auto& l : levels_[size_t(m.texture)]) map.levels.push_back(&l);
   }
+  if (options.cache) {  // every texture's levels one after another in the unit's memory
+    memory_ = std::make_unique<MemoryClient>(*options.cache);
+    for (size_t k = 0; k < scene.textures.size(); ++k) {
+      if (maps_[k].levels.empty()) {
+        base_surfaces_.push_back(memory_->place(scene.textures[k].width, scene.textures[k].height, 4));
+      } else {
+        place(maps_[k], *memory_);
+        base_surfaces_.push_back(maps_[k].surfaces.front());
+      }
+    }
+    sampler_.set_memory(memory_.get());
+  }
+}
+
+// Phong's bilinear read through the cache: the footprint's lines, each once.
+void TextureFetchKernel::read_footprint(const Surface& s, int x0, int y0, int x1, int y1, int i) {
+  const uint32_t line = memory_->line_bytes();
+  uint64_t lines[4];
+  int count = 0;
+  for (const auto& [x, y] : {std::pair{x0, y0}, {x1, y0}, {x0, y1}, {x1, y1}}) {
+    const uint64_t l = address(memory_->layout(), s, line, x, y) / line;
+    if (std::find(lines, lines + count, l) == lines + count) lines[count++] = l;
+  }
+  for (int k = 0; k < count; ++k) memory_->read_line(lines[k]);
+  lines_[i] = memory_->take_pixel_lines();
 }
 
 void TextureFetchKernel::process_filtered(SpanPacket& p) {
   sample_span(*p.tri, p, maps_[size_t(p.tri->material->texture)], sampler_, p.tex, ops_, uv_range_, work_,
-              capture_ ? captured_ : nullptr);
+              capture_ ? captured_ : nullptr, memory_ ? lines_ : nullptr);
   lod_computations_ += uint64_t(p.count);
   if (capture_)  // u, v, LOD from sample_span; no single texel address
     for (int i = 0; i < p.count; ++i) captured_[4][i] = captured_[2][i], captured_[2][i] = captured_[3][i] = -1;
@@ -80,6 +105,7 @@ void TextureFetchKernel::fetch(SpanPacket& p) {
     }
     if (capture_)
       captured_[0][i] = u, captured_[1][i] = v, captured_[2][i] = float(x0), captured_[3][i] = float(y0), captured_[4][i] = 0;
+    if (memory_) read_footprint(base_surfaces_[size_t(t.material->texture)], x0, y0, x1, y1, i);
     const glm::vec4* row0 = &tex.texels[size_t(y0) * tex.width];
     const glm::vec4* row1 = &tex.texels[size_t(y1) * tex.width];
     const glm::vec4 t00 = row0[x0], t10 = row0[x1], t01 = row1[x0], t11 = row1[x1];

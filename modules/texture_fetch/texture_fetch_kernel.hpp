@@ -30,7 +30,9 @@ class TextureFetchKernel {
   // float32 datapaths; the non-finite values among the block's outputs.
   NumberStats numbers() const { return {"float32", nonfinite_, {}}; }
   const Ops& ops() const { return ops_; }
-  Work work(const SpanPacket&) const { return {work_, 0}; }  // four texels a cycle, at least one
+  // Four texels a cycle, at least one; the DRAM lines of each pixel under the DRAM model.
+  Work work(const SpanPacket&) const { return {work_, 0, memory_ ? lines_ : nullptr}; }
+  const MemoryClient* memory() const { return memory_.get(); }
   bool bypass(const SpanPacket& p) const {
     return p.tri->material->texture < 0 || p.tri->material->path == core::ShadingPath::TextureObject;
   }
@@ -63,6 +65,10 @@ class TextureFetchKernel {
   std::vector<MipMap> maps_;                        // by texture index
   uint64_t lod_computations_ = 0;
   uint16_t work_[kSpanMax];
+  std::unique_ptr<MemoryClient> memory_;  // none: ideal memory
+  std::vector<Surface> base_surfaces_;    // by texture index: the finest level (phong's bilinear read)
+  uint16_t lines_[kSpanMax] = {};
+  void read_footprint(const Surface& s, int x0, int y0, int x1, int y1, int i);
   ValueRange uv_range_;
   Ops ops_;
   bool capture_ = false;

@@ -1,0 +1,103 @@
+#pragma once
+// The memory a block reads and writes (docs/memory.md): where a texel or a framebuffer
+// pixel lies in memory (its layout), and the cache in front of the shared DRAM. A block
+// that touches memory (a memory client: the texture units, the framebuffer) has a cache
+// of its own, set with pipeline.<block>.cache.*; its misses go to the DRAM
+// (modules/memory/dram.hpp), which the main pass's timing shares between clients.
+//
+// The cache is a client's alone and the client is in order, so which access hits does
+// not depend on time: the kernels run it as they fetch, and hand the timing the DRAM
+// lines each pixel moved.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace shadetlm::modules {
+
+// How a 2-D array of elements (texels, framebuffer pixels) is laid out in memory:
+//   linear  row after row
+//   tiled   tiles of one cache line each (w × h elements, w = h or w = 2h), tile row after tile row
+//   morton  Z-order: the bits of x and y interleaved, on the power-of-two square around the array
+enum class Layout { Linear, Tiled, Morton };
+const std::vector<std::string>& layout_names();  // in the order of Layout
+Layout parse_layout(const std::string& name);
+
+struct Surface {
+  uint64_t base = 0;  // address of element (0, 0), line-aligned
+  int width = 0, height = 0;
+  uint32_t element_bytes = 4;
+};
+// The address of element (x, y) of `s` (0 ≤ x < width, 0 ≤ y < height).
+uint64_t address(Layout layout, const Surface& s, uint32_t line_bytes, int x, int y);
+// The bytes `s` spans in `layout`, rounded up to whole lines.
+uint64_t surface_bytes(Layout layout, const Surface& s, uint32_t line_bytes);
+
+struct CacheConfig {
+  uint64_t size = 16384;  // bytes, a power of two
+  uint32_t line = 64;     // bytes, a power of two, at most `size`
+  uint32_t ways = 4;      // divides size / line (the lines)
+  Layout layout = Layout::Tiled;
+};
+// Why `c` is not a cache: the setting at fault ("size", "line" or "ways") and why;
+// two empty strings if it is one.
+struct CacheFault {
+  std::string setting, why;
+};
+CacheFault check(const CacheConfig& c);
+
+// A set-associative write-back, write-allocate cache with least-recently-used
+// replacement: a miss reads the line from the DRAM, and a dirty line it replaces is
+// written back.
+class Cache {
+ public:
+  explicit Cache(const CacheConfig& config);
+  struct Counts {
+    uint64_t accesses = 0, hits = 0, misses = 0, writebacks = 0;
+  };
+  // Reads (or writes) the line of `address`; returns the lines it moved to or from
+  // the DRAM: 0 on a hit, 1 on a miss, 2 on a miss that wrote back a dirty line.
+  uint32_t access(uint64_t address, bool write);
+  const Counts& counts() const { return counts_; }
+  const CacheConfig& config() const { return config_; }
+  uint64_t dirty_lines() const;  // lines written and not yet written back
+
+ private:
+  CacheConfig config_;
+  uint32_t line_shift_ = 0;
+  uint64_t sets_ = 0;
+  uint64_t clock_ = 0;               // accesses so far: the LRU stamp
+  std::vector<uint64_t> tag_;        // per way of each set: the line + 1 (0: empty)
+  std::vector<uint64_t> used_;       // per way: the stamp of its last access
+  std::vector<uint8_t> dirty_;
+  Counts counts_;
+};
+
+// A block's port to memory: its cache, its surfaces placed one after another from
+// address 0, and the DRAM lines the current pixel moved.
+class MemoryClient {
+ public:
+  explicit MemoryClient(const CacheConfig& config) : cache_(config) {}
+  // Places a surface of `width` × `height` elements of `element_bytes` after the last one.
+  Surface place(int width, int height, uint32_t element_bytes);
+  void access(const Surface& s, int x, int y, bool write) {
+    pixel_lines_ += cache_.access(address(cache_.config().layout, s, cache_.config().line, x, y), write);
+  }
+  // Reads the line holding `address` (a line the caller found for itself).
+  void read_line(uint64_t line) { pixel_lines_ += cache_.access(line * cache_.config().line, false); }
+  // The DRAM lines moved since the last call (the pixel's), at most 65535.
+  uint16_t take_pixel_lines() {
+    const uint64_t n = pixel_lines_;
+    pixel_lines_ = 0;
+    return uint16_t(n < 65535 ? n : 65535);
+  }
+  const Cache& cache() const { return cache_; }
+  Layout layout() const { return cache_.config().layout; }
+  uint32_t line_bytes() const { return cache_.config().line; }
+
+ private:
+  Cache cache_;
+  uint64_t next_ = 0;  // the next free address
+  uint64_t pixel_lines_ = 0;
+};
+
+}  // namespace shadetlm::modules
