@@ -17,7 +17,7 @@ passes=0
 failures=0
 
 # check NAME STALLS SCENE [--set k=v]...: STALLS=1 requires blocked cycles somewhere,
-# STALLS=2 memory stall cycles too.
+# STALLS=2 memory stall cycles too, STALLS=3 also hidden pixels whose depth read missed.
 check() {
   local name=$1 stalls=$2 scene=$3
   shift 3
@@ -32,7 +32,8 @@ check() {
   if ((stalls)) && ((blocked == 0)); then echo "FAIL $name: no block ever stalled"; ((failures++)); return; fi
   local waited
   waited=$(awk '$1 == "stats" { m += $8 } END { print m + 0 }' "$tmp/t.log")
-  if ((stalls == 2)) && ((waited == 0)); then echo "FAIL $name: no pixel waited for memory"; ((failures++)); return; fi
+  if ((stalls >= 2)) && ((waited == 0)); then echo "FAIL $name: no pixel waited for memory"; ((failures++)); return; fi
+  if ((stalls == 3)) && ! grep -q '^h ' "$tmp/t.log"; then echo "FAIL $name: no hidden depth miss"; ((failures++)); return; fi
   echo "ok $name: $(head -1 "$tmp/check" | cut -d: -f2-), blocked cycles $blocked, memory stall cycles $waited"
   ((passes++))
 }
@@ -84,6 +85,13 @@ check "framebuffer writes back, lines of 16 bytes" 2 "$src/golden/demo/scene.jso
   --set pipeline.framebuffer.cache.layout=linear --set pipeline.framebuffer.miss_queue=1 --set pipeline.memory.latency=9
 check "two texture clients share the DRAM" 2 "$src/golden/parallax-steps/scene.json" "${dram[@]}" \
   --set pipeline.texture_fetch.cache.size=512 --set pipeline.framebuffer.cache.size=512 --set pipeline.memory.bytes_per_cycle=1
+# The raster's depth reads: hidden pixels' misses too, the walk waiting for each (no
+# miss queue) or for its one miss entry.
+check "depth misses stop the walk" 3 "$src/golden/knot/scene.json" "${dram[@]}" --set pipeline.raster.miss_queue=0 \
+  --set pipeline.raster.cache.size=512 --set pipeline.memory.latency=30
+check "one depth miss in flight, lines of 16 bytes" 3 "$src/golden/bump-knot/scene.json" "${dram[@]}" \
+  --set pipeline.raster.miss_queue=1 --set pipeline.raster.cache.size=256 --set pipeline.raster.cache.line=16 \
+  --set pipeline.raster.cache.layout=linear --set pipeline.memory.bytes_per_cycle=2
 
 # The waveforms keep the same order: no pixel reaches a block before the block before
 # it handed it on plus a cycle and the block's latency (scripts/vcd-causality.py) — and
@@ -152,6 +160,8 @@ sed '3s/ 2 1 8 0 0$/ 2 0 8 0 0/' "$tmp/good.log" >"$tmp/bad.log";        refuse 
                                                                       refuse zero-bandwidth "line 4"
 { head -n 3 "$tmp/good.log"; echo "memory 200 32"; sed -n '4,$p' "$tmp/good.log"; } >"$tmp/bad.log"
                                                                       refuse lines-missing "expected: p"
+{ head -n 12 "$tmp/good.log"; echo "h 0 1"; sed -n '13,$p' "$tmp/good.log"; } >"$tmp/bad.log"
+                                                                      refuse depth-miss-without-memory "expected: h"
 printf 'block setup 16 8 0\nblock raster 4 1 99999999999\n' >"$tmp/bad.log"; refuse huge-depth "line 2"
 echo "hello" >"$tmp/bad.log";                                         refuse unknown "unknown record"
 printf 'block setup 16 8 0\nblock raster 4 1000000 4\nblock a 1 1 8\nt 0 0 16\nr 17\np 1 1 100000000 1 0 0 0 0 0 0\ne 0\nend 5\n' \

@@ -51,8 +51,9 @@ class Unit : public sc_core::sc_module {
   int64_t last = -1;
   size_t handed_count = 0;
 
-  // The DRAM: the data of `item`'s request is in the block at `back`.
-  void data_back(int64_t item, int64_t back) {
+  // The DRAM: the data of the request (item, tag) made in cycle `made` is in the block
+  // at `back`. A span block's item is a pixel waiting in it.
+  virtual void data_back(int64_t item, int64_t /*tag*/, int64_t /*made*/, int64_t back) {
     for (Held& h : held_)
       if (h.item == item) {
         stats.memory_stall += std::max<int64_t>(back - h.work_end, 0);
@@ -123,15 +124,81 @@ class Source : public Unit {
   std::vector<int64_t>& start_;
 };
 
+// The shared DRAM: each cycle it moves up to B bytes to the requests present, oldest
+// pixel first (for one pixel, the earlier block first); a request made in cycle t is
+// present from t + 1, and its data is back `latency` cycles after its last byte.
+class DramUnit : public sc_core::sc_module {
+ public:
+  SC_HAS_PROCESS(DramUnit);
+  DramUnit(sc_core::sc_module_name name, MemorySpec spec) : sc_core::sc_module(name), spec_(spec) {
+    SC_METHOD(edge);
+    sensitive << clk.pos();
+    dont_initialize();
+  }
+  sc_core::sc_in<bool> clk;
+  // A request's age: its pixel, then where along the pipeline (0: a hidden pixel the
+  // raster walked before it, 1: the raster, 2 + j: span block j), then the order made.
+  struct Age {
+    int64_t pixel, place, order;
+    bool operator<(const Age& o) const {
+      return pixel != o.pixel ? pixel < o.pixel : place != o.place ? place < o.place : order < o.order;
+    }
+  };
+  // `unit` asks for `bytes` in cycle `made`; told data_back(item, tag, made, back).
+  void request(Age age, int64_t made, int64_t bytes, Unit* unit, int64_t item, int64_t tag) {
+    pending_.push_back({age, made, made + 1, bytes, unit, item, tag});
+  }
+
+ private:
+  struct Request {
+    Age age;
+    int64_t made, present, left;
+    Unit* unit;
+    int64_t item, tag;
+  };
+  void edge() {
+    const int64_t t = cycle_now();
+    std::sort(pending_.begin(), pending_.end(), [](const Request& a, const Request& b) { return a.age < b.age; });
+    int64_t budget = spec_.bytes_per_cycle;
+    for (Request& r : pending_) {
+      if (budget == 0) break;
+      if (r.present > t) continue;
+      const int64_t take = std::min(budget, r.left);
+      r.left -= take, budget -= take;
+      if (r.left == 0) r.unit->data_back(r.item, r.tag, r.made, t + spec_.latency);
+    }
+    pending_.erase(std::remove_if(pending_.begin(), pending_.end(), [](const Request& r) { return r.left == 0; }),
+                   pending_.end());
+  }
+  MemorySpec spec_;
+  std::vector<Request> pending_;
+};
+
 // The raster: takes a triangle from its FIFO, walks it one step a II — hidden pixels
-// need no register, a visible one waits for a free register and is handed on.
+// need no register, a visible one waits for a free register and is handed on. With
+// memory, a step whose depth read missed needs a miss entry (fewer than Q in flight; an
+// entry is free the cycle after its data is back), and with Q = 0 the walk waits for
+// the data before its next step.
 class Walker : public Unit {
  public:
   Walker(sc_core::sc_module_name name, const BlockSpec& spec, Link& in, Link& out, const Workload& w,
-         Measured& m)
-      : Unit(name, spec, out), in_(in), w_(w), m_(m) {}
-  bool done() const { return taken_ == w_.triangles.size() && cur_ < 0; }
+         Measured& m, DramUnit* dram)
+      : Unit(name, spec, out), in_(in), w_(w), m_(m), dram_(dram) {}
+  bool done() const { return taken_ == w_.triangles.size() && cur_ < 0 && waiting_ == 0; }
   int64_t walk_end() const { return free_; }
+
+  void data_back(int64_t item, int64_t tag, int64_t made, int64_t back) override {
+    for (auto& e : entries_)
+      if (e.first == tag) e.second = back;
+    if (spec_.miss_queue == 0) {  // the walk waited for it
+      const int64_t next = std::max(made + spec_.ii, back + 1);
+      stats.blocked += next - (made + spec_.ii);
+      free_ = next;
+    }
+    --waiting_;
+    if (item >= 0) Unit::data_back(item, tag, made, back);  // a visible pixel
+    else stats.memory_stall += std::max<int64_t>(back - made, 0);
+  }
 
  private:
   bool triangle_left() const {
@@ -148,12 +215,42 @@ class Walker : public Unit {
     pixel_ = tri.first_pixel;
     hidden_ = tri.pixels > 0 ? w_.pixels[pixel_].hidden : 0;
     trailing_ = tri.trailing;
+    run_step_ = 0, miss_ = 0;
     stats.starved += starved_;
     starved_ = 0;
   }
   void step(int64_t t) {
     free_ = t + spec_.ii;
     stats.busy += spec_.ii;
+    stats.blocked += blocked_;
+    blocked_ = 0;
+  }
+  // The lines the next hidden step of the run moves (the run's misses, in order).
+  uint32_t hidden_step_lines(const std::vector<std::pair<int64_t, uint32_t>>& misses) const {
+    return miss_ < misses.size() && misses[miss_].first == run_step_ ? misses[miss_].second : 0;
+  }
+  // Whether a miss may start at t: an entry free (or, with no miss queue, none needed).
+  bool entry_free(int64_t t) {
+    entries_.erase(std::remove_if(entries_.begin(), entries_.end(), [&](const auto& e) { return e.second + 1 <= t; }),
+                   entries_.end());
+    return spec_.miss_queue == 0 || int64_t(entries_.size()) < spec_.miss_queue;
+  }
+  // The depth read of the step at t moved `lines`: ask the DRAM (item −1: a hidden pixel).
+  void depth_read(int64_t t, uint32_t lines, int64_t item, DramUnit::Age age) {
+    const int64_t tag = next_tag_++;
+    entries_.push_back({tag, kNever});
+    ++waiting_;
+    dram_->request(age, t, int64_t(lines) * spec_.line_bytes, this, item, tag);
+    if (spec_.miss_queue == 0) free_ = kNever;  // until the data is back
+  }
+  // A hidden step of a run whose misses are `misses`; false: it waits for an entry.
+  bool hidden_step(int64_t t, const std::vector<std::pair<int64_t, uint32_t>>& misses) {
+    const uint32_t lines = hidden_step_lines(misses);
+    if (lines > 0 && !entry_free(t)) return false;
+    step(t);
+    if (lines > 0) depth_read(t, lines, -1, {int64_t(pixel_), 0, next_tag_}), ++miss_;
+    ++run_step_;
+    return true;
   }
   void edge() override {
     const int64_t t = cycle_now();
@@ -163,18 +260,23 @@ class Walker : public Unit {
       if (cur_ < 0 && !in_fifo_.empty() && t > last_take_) take(t);
       const Triangle* tri = cur_ >= 0 ? &w_.triangles[size_t(cur_)] : nullptr;
       if (tri && hidden_ > 0) {
-        --hidden_, step(t);
+        if (hidden_step(t, w_.pixels[pixel_].hidden_lines)) --hidden_;
+        else blocked_ += 1;
       } else if (tri && pixel_ < tri->first_pixel + tri->pixels) {
-        if (room()) {
+        const uint32_t lines = w_.pixels[pixel_].depth_lines;
+        if (room() && (lines == 0 || entry_free(t))) {
           m_.start[0][pixel_] = t;
-          issue(t, int64_t(pixel_), 1);
+          issue(t, int64_t(pixel_), 1, lines > 0);
+          if (lines > 0) depth_read(t, lines, int64_t(pixel_), {int64_t(pixel_), 1, 0});
           ++pixel_;
           hidden_ = pixel_ < tri->first_pixel + tri->pixels ? w_.pixels[pixel_].hidden : 0;
+          run_step_ = 0, miss_ = 0;
         } else {
           blocked_ += 1;
         }
       } else if (tri && trailing_ > 0) {
-        --trailing_, step(t);
+        if (hidden_step(t, tri->trailing_lines)) --trailing_;
+        else blocked_ += 1;
       } else {
         starved_ += 1;  // no triangle to walk
       }
@@ -188,54 +290,14 @@ class Walker : public Unit {
   Link& in_;
   const Workload& w_;
   Measured& m_;
+  DramUnit* dram_;
   std::deque<int64_t> in_fifo_;
   int64_t cur_ = -1, last_take_ = -1, hidden_ = 0, trailing_ = 0;
   size_t pixel_ = 0, taken_ = 0;
-};
-
-// The shared DRAM: each cycle it moves up to B bytes to the requests present, oldest
-// pixel first (for one pixel, the earlier block first); a request made in cycle t is
-// present from t + 1, and its data is back `latency` cycles after its last byte.
-class DramUnit : public sc_core::sc_module {
- public:
-  SC_HAS_PROCESS(DramUnit);
-  DramUnit(sc_core::sc_module_name name, MemorySpec spec) : sc_core::sc_module(name), spec_(spec) {
-    SC_METHOD(edge);
-    sensitive << clk.pos();
-    dont_initialize();
-  }
-  sc_core::sc_in<bool> clk;
-  // Pixel `pixel` asks at block `block` (its age: pixel, then block) in cycle `made`.
-  void request(int64_t pixel, size_t block, int64_t made, int64_t bytes, Unit* unit) {
-    pending_.push_back({pixel, block, made + 1, bytes, unit});
-  }
-  int64_t bytes = 0;
-
- private:
-  struct Request {
-    int64_t pixel;
-    size_t block;
-    int64_t present, left;
-    Unit* unit;
-  };
-  void edge() {
-    const int64_t t = cycle_now();
-    std::sort(pending_.begin(), pending_.end(), [](const Request& a, const Request& b) {
-      return a.pixel != b.pixel ? a.pixel < b.pixel : a.block < b.block;
-    });
-    int64_t budget = spec_.bytes_per_cycle;
-    for (Request& r : pending_) {
-      if (budget == 0) break;
-      if (r.present > t) continue;
-      const int64_t take = std::min(budget, r.left);
-      r.left -= take, budget -= take, bytes += take;
-      if (r.left == 0) r.unit->data_back(r.pixel, t + spec_.latency);
-    }
-    pending_.erase(std::remove_if(pending_.begin(), pending_.end(), [](const Request& r) { return r.left == 0; }),
-                   pending_.end());
-  }
-  MemorySpec spec_;
-  std::vector<Request> pending_;
+  int64_t run_step_ = 0;  // the hidden run's steps walked
+  size_t miss_ = 0;       // the hidden run's misses walked
+  std::vector<std::pair<int64_t, int64_t>> entries_;  // misses in flight: (tag, data back; kNever: not yet)
+  int64_t next_tag_ = 0, waiting_ = 0;
 };
 
 // A span block: its input FIFO, its unit, its output.
@@ -257,7 +319,7 @@ class SpanUnit : public Unit {
         const Pixel& p = w_.pixels[size_t(n)];
         const int64_t lines = dram_ && !p.lines.empty() ? int64_t(p.lines[index_]) : 0;
         issue(t, n, int64_t(p.work[index_]), lines > 0);
-        if (lines > 0) dram_->request(n, index_, t, lines * spec_.line_bytes, this);
+        if (lines > 0) dram_->request({n, 2 + int64_t(index_), 0}, t, lines * spec_.line_bytes, this, n, 0);
       } else {
         wait_cycle();
       }
@@ -316,13 +378,13 @@ Measured run_clocked(const Workload& w) {
   for (size_t j = 0; j <= line; ++j) links.push_back(std::make_unique<Link>());
   Source setup("setup", w.blocks[0], *links[0], triangles, m.setup_start);
   setup.handed = &m.setup_handed;
-  Walker raster("raster", w.blocks[1], *links[0], *links[1], w, m);
-  raster.handed = &m.handed[0], raster.valid = &m.valid[0];
   std::unique_ptr<DramUnit> dram;
   if (w.memory) {
     dram = std::make_unique<DramUnit>("dram", *w.memory);
     dram->clk(clk);
   }
+  Walker raster("raster", w.blocks[1], *links[0], *links[1], w, m, dram.get());
+  raster.handed = &m.handed[0], raster.valid = &m.valid[0];
   std::vector<std::unique_ptr<SpanUnit>> units;
   for (size_t j = 1; j < line; ++j) {
     units.push_back(std::make_unique<SpanUnit>(w.blocks[j + 1].name.c_str(), w.blocks[j + 1], j - 1, *links[j],

@@ -16,6 +16,15 @@ Workload read_workload(const std::string& path) {
   auto fail = [&](const std::string& why) {
     throw core::InputError(path, "line " + std::to_string(number), why);
   };
+  std::vector<std::pair<int64_t, uint32_t>> misses;  // h records, for the next p or e
+  // The h records before a run of `steps` hidden steps: in order, within it.
+  auto take_misses = [&](int64_t steps, std::vector<std::pair<int64_t, uint32_t>>& into) {
+    for (size_t k = 0; k < misses.size(); ++k)
+      if (misses[k].first >= steps || (k > 0 && misses[k].first <= misses[k - 1].first))
+        fail("h records must name hidden steps of the run, in order");
+    into = std::move(misses);
+    misses.clear();
+  };
   while (std::getline(in, line)) {
     ++number;
     std::istringstream s(line);
@@ -50,6 +59,14 @@ Workload read_workload(const std::string& path) {
       w.triangles.push_back(t);
     } else if (kind == "r") {
       if (w.triangles.empty() || !(s >> w.triangles.back().taken)) fail("expected: r <cycle>, after a triangle");
+    } else if (kind == "h") {
+      int64_t step = -1;
+      uint32_t lines = 0;
+      s >> step >> lines;
+      if (!s || step < 0 || lines < 1 || lines > 65535 || !w.memory || w.blocks.size() < 2 ||
+          w.blocks[1].line_bytes == 0)
+        fail("expected: h <step> <lines in 1 … 65535>, after a memory record, the raster a memory client");
+      misses.push_back({step, lines});
     } else if (kind == "p") {
       if (w.triangles.empty() || w.blocks.size() < 2) fail("a pixel before its blocks and triangle");
       Pixel p;
@@ -59,6 +76,7 @@ Workload read_workload(const std::string& path) {
       p.start.resize(line_blocks), p.valid.resize(line_blocks), p.handed.resize(line_blocks);
       for (auto& x : p.work) s >> x;
       if (w.memory) {
+        s >> p.depth_lines;
         p.lines.resize(line_blocks - 1);
         for (auto& x : p.lines) s >> x;
       }
@@ -68,6 +86,9 @@ Workload read_workload(const std::string& path) {
         fail("expected: p <x> <y> <hidden> <a work per span block> <start valid handed per line block>");
       for (uint32_t x : p.work)
         if (x > 65535) fail("a pixel's work is at most 65535 units");
+      if (p.depth_lines > 65535 || (p.depth_lines > 0 && w.blocks[1].line_bytes == 0))
+        fail("the raster's depth lines: at most 65535, and the raster a memory client");
+      take_misses(p.hidden, p.hidden_lines);
       for (size_t j = 0; j < p.lines.size(); ++j) {
         if (p.lines[j] > 65535) fail("a pixel moves at most 65535 lines at a block");
         if (p.lines[j] > 0 && (w.blocks[j + 2].line_bytes == 0 || p.work[j] == 0))
@@ -79,6 +100,7 @@ Workload read_workload(const std::string& path) {
       if (w.triangles.empty() || !(s >> w.triangles.back().trailing) || w.triangles.back().trailing < 0 ||
           w.triangles.back().trailing > 100000000)
         fail("expected: e <steps>, after a triangle");
+      take_misses(w.triangles.back().trailing, w.triangles.back().trailing_lines);
     } else if (kind == "end") {
       if (!(s >> w.end) || w.end < 0) fail("expected: end <cycle ≥ 0>");
     } else if (kind == "stats") {
@@ -92,6 +114,7 @@ Workload read_workload(const std::string& path) {
     }
   }
   if (w.blocks.size() < 2) throw core::InputError(path, "block", "needs setup and the raster at least");
+  if (!misses.empty()) throw core::InputError(path, "h", "h records after the last pixel or e record");
   if (w.end < 0) throw core::InputError(path, "end", "no end record: a log cut short?");
   if (serial_cycles(w) > 1e11) throw core::InputError(path, "", "more than 10^11 cycles to step: too long to check");
   return w;
@@ -105,12 +128,19 @@ double serial_cycles(const Workload& w) {
     for (size_t j = 0; j < p.work.size(); ++j) bound += double(p.work[j]) * double(w.blocks[j + 2].ii);
   }
   for (const Triangle& t : w.triangles) bound += double(t.trailing) * double(w.blocks[1].ii);
-  if (w.memory)  // every request alone: its bytes at the DRAM's rate, then its latency
-    for (const Pixel& p : w.pixels)
-      for (size_t j = 0; j < p.lines.size(); ++j)
-        if (p.lines[j] > 0)
-          bound += double(p.lines[j]) * double(w.blocks[j + 2].line_bytes) / double(w.memory->bytes_per_cycle) +
-                   double(w.memory->latency) + 2;
+  if (!w.memory) return bound;
+  // Every request alone: its bytes at the DRAM's rate, then its latency.
+  auto request = [&](double lines, int64_t line_bytes) {
+    return lines * double(line_bytes) / double(w.memory->bytes_per_cycle) + double(w.memory->latency) + 2;
+  };
+  for (const Pixel& p : w.pixels) {
+    for (size_t j = 0; j < p.lines.size(); ++j)
+      if (p.lines[j] > 0) bound += request(p.lines[j], w.blocks[j + 2].line_bytes);
+    if (p.depth_lines > 0) bound += request(p.depth_lines, w.blocks[1].line_bytes);
+    for (const auto& m : p.hidden_lines) bound += request(m.second, w.blocks[1].line_bytes);
+  }
+  for (const Triangle& t : w.triangles)
+    for (const auto& m : t.trailing_lines) bound += request(m.second, w.blocks[1].line_bytes);
   return bound;
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace shadetlm::timing_reference {
@@ -21,6 +22,8 @@ struct Pixel {
   int64_t hidden = 0;                // the raster's hidden steps just before it
   std::vector<uint32_t> work;        // per span block (units of its II; 0: bypassed)
   std::vector<uint32_t> lines;       // per span block: DRAM lines moved (a memory record only)
+  uint32_t depth_lines = 0;          // the raster's depth read and write
+  std::vector<std::pair<int64_t, uint32_t>> hidden_lines;  // hidden steps before it that missed: (step, lines)
   std::vector<int64_t> start, valid, handed;  // the fast model's, per line block (raster first)
 };
 
@@ -29,6 +32,7 @@ struct Triangle {
   int64_t start = 0, handed = 0, taken = 0;  // the fast model's: at setup, by the raster
   size_t first_pixel = 0, pixels = 0;
   int64_t trailing = 0;  // hidden steps after its last pixel
+  std::vector<std::pair<int64_t, uint32_t>> trailing_lines;  // of which missed: (step, lines)
 };
 
 struct BlockStatsLine {

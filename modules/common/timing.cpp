@@ -29,7 +29,7 @@ PixelLine::PixelLine(std::vector<Timing> blocks, DramTiming dram) {
     s.timing = blocks[j];
     s.capacity = int64_t(capacity(blocks[j]));
     s.next_depth = j + 1 < blocks.size() ? int64_t(blocks[j + 1].fifo_depth) : 0;
-    s.line_bytes = j > 0 ? blocks[j].line_bytes : 0;  // (the raster's depth traffic: not modelled yet)
+    s.line_bytes = blocks[j].line_bytes;
     if (s.line_bytes > 0 && !dram_) dram_ = std::make_unique<Dram>(dram);
     reach = std::max({reach, uint64_t(s.capacity), uint64_t(s.next_depth), blocks[j].fifo_depth});
     blocks_.push_back(s);
@@ -49,6 +49,20 @@ PixelLine::PixelLine(std::vector<Timing> blocks, DramTiming dram) {
   blocks_.back().next_s = &ring_[blocks_.size() * 2 * ring_size_];
   blocks_.back().next_depth = 1;
   times_.assign(blocks_.size(), std::vector<Times>(64));
+  depth_back_.assign(ring_above(blocks_[0].timing.miss_queue), -1);
+}
+
+int64_t PixelLine::depth_read(int64_t& t, uint32_t lines) {
+  Slot& r = blocks_[0];
+  const uint64_t entries = r.timing.miss_queue;
+  const uint64_t mask = depth_back_.size() - 1;
+  if (entries > 0 && depth_misses_ >= entries) t = std::max(t, depth_back_[(depth_misses_ - entries) & mask] + 1);
+  dram_->forget_before(t);  // nothing later is asked before the walk's step
+  const int64_t back = dram_->request(t, uint64_t(lines) * r.line_bytes);
+  depth_back_[depth_misses_++ & mask] = back;
+  r.t.memory_stall += uint64_t(std::max<int64_t>(back - t, 0));
+  r.t.dram_lines += lines;
+  return back;
 }
 
 int64_t PixelLine::start_triangle(int64_t arrival) {
@@ -61,9 +75,25 @@ int64_t PixelLine::start_triangle(int64_t arrival) {
   return taken;
 }
 
-void PixelLine::walk_hidden(uint64_t steps) {
+void PixelLine::walk_hidden(uint64_t steps, const std::vector<StepLines>& misses) {
   Slot& r = blocks_[0];
-  const uint64_t cycles = r.timing.ii * steps;
+  uint64_t walked = 0;
+  for (const StepLines& m : misses) {  // the steps up to a miss at a II each, then the miss
+    if (log_) log_->hidden_lines(m.step, m.lines);
+    r.t.add_busy(r.free, r.timing.ii * (m.step - walked));
+    r.free += int64_t(r.timing.ii * (m.step - walked));
+    int64_t t = r.free;
+    const int64_t back = depth_read(t, m.lines);
+    r.t.blocked += uint64_t(t - r.free);  // every miss entry taken
+    r.t.add_busy(t, r.timing.ii);
+    r.free = t + r.ii;
+    if (r.timing.miss_queue == 0 && back + 1 > r.free) {  // no miss queue: the walk waits for the data
+      r.t.blocked += uint64_t(back + 1 - r.free);
+      r.free = back + 1;
+    }
+    walked = m.step + 1;
+  }
+  const uint64_t cycles = r.timing.ii * (steps - walked);
   r.t.add_busy(r.free, cycles);
   r.free += int64_t(cycles);
 }
@@ -77,13 +107,25 @@ void PixelLine::sweep_pixels(int count) {
     // The raster: the walk has reached the pixel (a step of its own) and a register is free.
     Slot& r = blocks_[0];
     int64_t s = std::max(r.free, r.d[(n_ - uint64_t(r.capacity)) & ring_mask_] + 1);
+    int64_t done = s + r.latency;
+    int64_t depth_back = -1;
+    if constexpr (kMemory) {
+      if (const uint32_t lines = r.work.lines_at(i); lines > 0) {  // its depth read missed
+        depth_back = depth_read(s, lines);
+        done = std::max(s, depth_back) + r.latency;
+      }
+      dram_->forget_before(s);  // every later request is made after s
+    }
     r.t.blocked += uint64_t(s - r.free);
     if constexpr (kInspect) r.t.add_busy(s, uint64_t(r.ii));
     else r.t.busy += uint64_t(r.ii);
     r.free = s + r.ii;
-    if constexpr (kMemory) dram_->forget_before(s);  // every later request is made after s
-    int64_t d = std::max(std::max(s + r.latency, r.t.last + 1), r.next_s[(n_ - uint64_t(r.next_depth)) & ring_mask_] + 1);
-    if constexpr (kInspect) times_[0][size_t(i)] = {s, d, std::max(s + r.latency, r.t.last + 1), 0};
+    if (kMemory && r.timing.miss_queue == 0 && depth_back + 1 > r.free) {  // the walk waits for the data
+      r.t.blocked += uint64_t(depth_back + 1 - r.free);
+      r.free = depth_back + 1;
+    }
+    int64_t d = std::max(std::max(done, r.t.last + 1), r.next_s[(n_ - uint64_t(r.next_depth)) & ring_mask_] + 1);
+    if constexpr (kInspect) times_[0][size_t(i)] = {s, d, std::max(done, r.t.last + 1), 0};
     r.s[slot] = s, r.d[slot] = d, r.t.last = d;
     for (size_t j = 1; j < blocks; ++j) {  // the span blocks, timing.hpp's recurrence
       Slot& b = blocks_[j];
@@ -118,9 +160,9 @@ void PixelLine::sweep_pixels(int count) {
   }
 }
 
-void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before) {
+void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before, const std::vector<StepLines>& misses) {
   const int count = p.count;
-  walk_hidden(hidden_before);
+  walk_hidden(hidden_before, misses);
   if (keep_times && times_[0].size() < size_t(count))
     for (auto& t : times_) t.resize(size_t(count));
   const size_t blocks = blocks_.size();
@@ -203,6 +245,9 @@ void TimingLog::triangle(uint32_t id, int64_t start, int64_t handed) {
   text_ += "t " + std::to_string(id) + " " + std::to_string(start) + " " + std::to_string(handed) + "\n";
 }
 void TimingLog::taken(int64_t cycle) { text_ += "r " + std::to_string(cycle) + "\n"; }
+void TimingLog::hidden_lines(uint64_t step, uint32_t lines) {
+  text_ += "h " + std::to_string(step) + " " + std::to_string(lines) + "\n";
+}
 void TimingLog::trailing(uint64_t steps) { text_ += "e " + std::to_string(steps) + "\n"; }
 void TimingLog::end(int64_t cycle) { text_ += "end " + std::to_string(cycle) + "\n"; }
 void TimingLog::stats(const std::string& name, const BlockTimes& t) {
@@ -215,7 +260,7 @@ void TimingLog::pixels(const SpanPacket& p, uint64_t hidden, const PixelLine& li
              std::to_string(i == 0 ? hidden : 0);
     for (size_t j = 1; j < line.size(); ++j) text_ += " " + std::to_string(line.work(int(j)).at(i));
     if (line.dram())
-      for (size_t j = 1; j < line.size(); ++j) text_ += " " + std::to_string(line.work(int(j)).lines_at(i));
+      for (size_t j = 0; j < line.size(); ++j) text_ += " " + std::to_string(line.work(int(j)).lines_at(i));
     for (size_t j = 0; j < line.size(); ++j)
       text_ += " " + std::to_string(line.start(int(j), i)) + " " + std::to_string(line.valid_from(int(j), i)) + " " +
                std::to_string(line.handed(int(j), i));

@@ -29,6 +29,10 @@
 // shared DRAM for them as it starts the pixel; the data is back at r (modules/memory/
 // dram.hpp), and the pixel is done at f_j(n) = max(s_j(n) + II·(w − 1), r) + L. Its
 // miss queue of Q pixels adds Q to C: the pixels a block can hold while they wait.
+// The raster's depth reads (hidden pixels' too) are misses of its own: one may start
+// when fewer than Q are in flight (its data back at r, the entry free at r + 1), a
+// visible pixel is done at max(s, r) + L, and with Q = 0 the walk waits for each
+// miss's data (its next step at r + 1 at the earliest).
 #include <algorithm>
 #include <cstdint>
 #include <functional>
@@ -86,12 +90,14 @@ class PixelLine;
 //   memory <latency> <bytes_per_cycle>             the DRAM (none: ideal memory)
 //   t <triangle> <start> <handed>                 setup hands a triangle on
 //   r <cycle>                                     the raster takes it
-//   p <x> <y> <hidden> <w_1> … <w_J> [<m_1> … <m_J>] <s_0> <v_0> <d_0> … <s_J> <v_J> <d_J>
+//   p <x> <y> <hidden> <w_1> … <w_J> [<m_0> … <m_J>] <s_0> <v_0> <d_0> … <s_J> <v_J> <d_J>
 //                                                 a pixel: hidden steps walked before it,
 //                                                 its work at each span block, the DRAM
-//                                                 lines it moved at each (with a memory
-//                                                 record), its start, valid (at the
-//                                                 output) and hand-over
+//                                                 lines it moved at the raster and each
+//                                                 span block (with a memory record), its
+//                                                 start, valid (at the output) and hand-over
+//   h <step> <lines>                              a hidden pixel's depth read moved DRAM lines: its
+//                                                 step in the hidden run before the next p (or e)
 //   e <steps>                                     hidden steps after the triangle's last pixel
 //   end <cycle>                                   the pass's end
 //   stats <name> <busy> <starved> <blocked> <fifo_cycles> <fifo_peak> <memory_stall>
@@ -103,6 +109,7 @@ class TimingLog {
   void taken(int64_t cycle);
   void pixels(const SpanPacket& p, uint64_t hidden, const PixelLine& line);
   void trailing(uint64_t steps);
+  void hidden_lines(uint64_t step, uint32_t lines);
   void end(int64_t cycle);
   void stats(const std::string& name, const BlockTimes& t);
   const std::string& text() const { return text_; }
@@ -112,6 +119,12 @@ class TimingLog {
 };
 
 // The main pass's pixel stream: the raster (slot 0) and the span blocks after it.
+// A hidden pixel whose depth read moved `lines` DRAM lines: its step in its hidden run.
+struct StepLines {
+  uint64_t step;
+  uint32_t lines;
+};
+
 class PixelLine {
  public:
   // `dram`: the shared DRAM's timing, when a block is a memory client (line_bytes > 0).
@@ -123,12 +136,12 @@ class PixelLine {
   void set_work(int slot, Work w) { blocks_[size_t(slot)].work = w; }
 
   // The raster: triangle `arrival` was handed on by setup at that cycle; the walk goes
-  // on through `steps` hidden pixels; the triangle's walk has ended.
+  // on through `steps` hidden pixels, of which `misses` moved DRAM lines (in order).
   int64_t start_triangle(int64_t arrival);
-  void walk_hidden(uint64_t steps);
+  void walk_hidden(uint64_t steps, const std::vector<StepLines>& misses = {});
   // Times the pixels of packet `p` once every block has seen it; `hidden_before`: the
   // steps walked before its first pixel. Then tells the observers and the log.
-  void sweep(const SpanPacket& p, uint64_t hidden_before);
+  void sweep(const SpanPacket& p, uint64_t hidden_before, const std::vector<StepLines>& misses = {});
   // At the pass's end: the span blocks' starved cycles (from their busy and blocked ones).
   void settle();
   void watch(TimedObserver* o) { observers_.push_back(o), keep_times = true; }
@@ -175,6 +188,9 @@ class PixelLine {
     uint64_t q;
   };
   template <bool kInspect, bool kMemory> void sweep_pixels(int count);
+  // The raster's depth read at cycle t moves `lines`: t waits for a miss entry; returns
+  // the cycle its data is back.
+  int64_t depth_read(int64_t& t, uint32_t lines);
 
   std::vector<Slot> blocks_;
   std::vector<int64_t> ring_;  // per block: the starts, then the hand-overs of the last pixels
@@ -185,6 +201,8 @@ class PixelLine {
   std::vector<TimedObserver*> observers_;
   TimingLog* log_ = nullptr;
   std::unique_ptr<Dram> dram_;  // none: ideal memory
+  std::vector<int64_t> depth_back_;  // the raster's last misses: when their data came back (a ring)
+  uint64_t depth_misses_ = 0;
 };
 
 // Setup's triangles into the raster's triangle FIFO: triangle k starts when setup's unit

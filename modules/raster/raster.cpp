@@ -13,6 +13,7 @@ BlockStats Raster::stats() const {
   s.ops = kernel_.ops();
   const BlockTimes& t = times();
   s.busy_cycles = t.busy, s.starved_cycles = t.starved, s.blocked_cycles = t.blocked;
+  s.memory_stall_cycles = t.memory_stall;
   return s;
 }
 
@@ -33,6 +34,16 @@ void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& dela
   const sc_core::sc_time sent = period_ * double(taken) - now;
   const uint64_t walked_before = kernel_.pixels_walked();
   uint64_t timed_steps = 0;  // of the triangle's walk, up to the last pixel timed
+  size_t misses_taken = 0;   // of kernel_.hidden_lines()
+  // The hidden pixels that missed among the walk's steps [from, to) of the triangle,
+  // by their step from `from`.
+  auto hidden_misses = [&](uint64_t from, uint64_t to) -> const std::vector<StepLines>& {
+    misses_.clear();
+    const auto& all = kernel_.hidden_lines();
+    for (; misses_taken < all.size() && all[misses_taken].step - walked_before < to; ++misses_taken)
+      misses_.push_back({all[misses_taken].step - walked_before - from, all[misses_taken].lines});
+    return misses_;
+  };
   kernel_.run(t, [&](SpanPacket& p) {
     ++stats_.packets;
     stats_.pixels += uint64_t(p.count);
@@ -43,11 +54,15 @@ void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& dela
     out->b_transport(span_, d);
     // The walk's steps before the packet's first pixel, hidden ones included.
     const uint64_t first = kernel_.row_walked_before() - walked_before + uint64_t(p.x0 - p.row_start);
-    if (line_) line_->sweep(p, first - timed_steps);
+    if (line_) {
+      line_->set_work(0, kernel_.work());
+      line_->sweep(p, first - timed_steps, hidden_misses(timed_steps, first));
+    }
     timed_steps = first + uint64_t(p.count);
   });
   const uint64_t trailing = kernel_.pixels_walked() - walked_before - timed_steps;
-  if (line_) line_->walk_hidden(trailing);
+  if (line_) line_->walk_hidden(trailing, hidden_misses(timed_steps, timed_steps + trailing));
+  kernel_.hidden_lines().clear();
   if (log) log->trailing(trailing);
   // Setup's back-pressure: the transaction returns the cycle the raster took it.
   delay = sent;

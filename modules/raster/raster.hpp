@@ -39,6 +39,7 @@ class Raster : public sc_core::sc_module, public BlockInfo {
   BlockTimes no_times_;
   BlockStats stats_;
   tlm::tlm_generic_payload span_;
+  std::vector<StepLines> misses_;  // a hidden run's depth misses, for the PixelLine
 };
 
 }  // namespace shadetlm::modules

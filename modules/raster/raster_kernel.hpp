@@ -11,15 +11,29 @@
 // pixels go out as span packets of at most kSpanMax pixels, with w = 1/(1/w) for the
 // blocks downstream (the one reciprocal per pixel of perspective-correct
 // interpolation).
+//
+// Under the DRAM model (docs/memory.md) the depth buffer (32 bits a pixel) lies in
+// memory behind the raster's cache: every pixel walked reads its depth, a visible one
+// writes it. The accesses are made in walk order as each packet is sent (and at each
+// row's end), so that the walk's loops stay as they are.
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/memory/cache.hpp"
 
 namespace shadetlm::modules {
 
 class RasterKernel {
  public:
-  RasterKernel(int width, int height);
+  RasterKernel(int width, int height, std::optional<CacheConfig> cache = std::nullopt);
+
+  // A hidden pixel whose depth read moved DRAM lines: its step in the frame's walk.
+  struct HiddenLines {
+    uint64_t step;
+    uint16_t lines;
+  };
 
   // Calls emit(SpanPacket&) for each run of visible pixels of the triangle.
   template <class Emit>
@@ -29,6 +43,11 @@ class RasterKernel {
   uint64_t pixels_walked() const { return walked_; }
   uint64_t row_walked_before() const { return row_before_; }  // walked before this row
   uint64_t pixels_hidden() const { return hidden_; }
+  // The visible pixels' depth traffic (DRAM lines) of the packet being sent.
+  Work work() const { return {nullptr, 1, memory_ ? lines_ : nullptr}; }
+  const MemoryClient* memory() const { return memory_.get(); }
+  // The hidden pixels that moved lines, in walk order, since the caller last cleared it.
+  std::vector<HiddenLines>& hidden_lines() { return hidden_lines_; }
 
   // Per pixel walked: the 1/w step (compares are free, as everywhere); per visible
   // pixel, the reciprocal; per seed (a row's first pixel, then every kSpanMax), the
@@ -43,6 +62,14 @@ class RasterKernel {
   SpanPacket packet_{};  // zeroed: the lanes past a packet's count are read (kLanes)
   Ops ops_;
   uint64_t walked_ = 0, hidden_ = 0, row_before_ = 0;
+  // The depth buffer's memory traffic (none: ideal memory).
+  std::unique_ptr<MemoryClient> memory_;
+  Surface depth_surface_;
+  uint16_t lines_[kSpanMax] = {};
+  std::vector<HiddenLines> hidden_lines_;
+  int accessed_to_ = 0;  // the row's pixels before it have made their accesses
+  void access_hidden(int y, int x_begin, int until);
+  void access_packet(const SpanPacket& p, int x_begin);
 };
 
 template <class Emit>
@@ -61,6 +88,7 @@ void RasterKernel::run(const TriangleSetup& t, Emit&& emit) {
     for (int i = 0; i < lanes(count); ++i) p.w[i] = 1.0f / p.inv_w[i];
     ops_ += kOpsPerPixelVisible * uint64_t(count);
     p.count = count;
+    if (memory_) access_packet(p, p.row_start);
     emit(p);
     count = 0;
   };
@@ -76,6 +104,7 @@ void RasterKernel::run(const TriangleSetup& t, Emit&& emit) {
     float* const depth = &inv_depth_[size_t(y) * width_];
     p.y = y;
     p.row_start = x_begin;
+    accessed_to_ = x_begin;
     for (int seed = x_begin; seed < x_end; seed += kSpanMax) {  // re-seeded every kSpanMax pixels
       float inv_w = t.inv_w.at(seed - t.x_ref, y - t.y_ref);
       const int end = x_end - seed > kSpanMax ? seed + kSpanMax : x_end;
@@ -102,6 +131,7 @@ void RasterKernel::run(const TriangleSetup& t, Emit&& emit) {
       }
     }
     if (count > 0) send(x_end);
+    if (memory_) access_hidden(y, x_begin, x_end);
   }
   hidden_ += hidden;
 }

@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# The memory model's figures (docs/memory.md), every one printed here, on the benchmark
+# scenes at 1920×1080 under pipeline.memory.model=dram (the default DRAM: 200 cycles,
+# 32 bytes a cycle):
+#  1. frame cycles, DRAM bytes per fetched pixel and hit rate against the texture
+#     unit's cache size (1 … 64 KiB): the bump fetch (bench-bump), the screen-space
+#     filters trilinear, anisotropic and EWA (bench-texture's texture-screen objects);
+#  2. the three layouts at the default 16 KiB cache, for the bump fetch, the trilinear
+#     filter and the framebuffer's colour;
+#  3. the bump-mapping paper's cost claim with the texture unit and its memory counted:
+#     Phong (bench) against bump (bench-bump), ideal memory against the DRAM.
+# Usage: scripts/memory.sh [--doc]   (--doc: the tables into docs/memory.md, between
+# its <!-- memory:N --> markers). About 5 minutes.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+bin=$root/build/app/shadetlm
+[[ -x $bin ]] || "$root/scripts/build.sh" >/dev/null
+doc=0
+[[ ${1:-} == --doc ]] && doc=1
+out=$root/out/memory
+mkdir -p "$out"
+python3 - "$bin" "$root" "$out" <<'PY' | tee "$out/memory.txt"
+import json, subprocess, sys
+bin, root, out = sys.argv[1:4]
+
+def render(scene, *sets):
+    args = [bin, "render", f"{root}/scenes/{scene}.json", "-o", f"{out}/f.exr", "--stats", f"{out}/s.json"]
+    for s in sets:
+        args += ["--set", s]
+    subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
+    return json.load(open(f"{out}/s.json"))
+
+DRAM = "pipeline.memory.model=dram"
+def client(stats, block):
+    b = stats["blocks"][block]
+    m = b["memory"]
+    return m["dram_bytes"] / max(b["pixels"], 1), m["hit_rate"]
+
+print("## 1. Frame cycles (millions), DRAM bytes per fetched pixel and hit rate against the cache size\n")
+paths = [("bump fetch", "bench-bump-1080p", "bump_fetch", []),
+         ("trilinear", "bench-texture-1080p", "texture_fetch", ["pipeline.texture_fetch.filter=trilinear"]),
+         ("anisotropic", "bench-texture-1080p", "texture_fetch", ["pipeline.texture_fetch.filter=anisotropic"]),
+         ("EWA", "bench-texture-1080p", "texture_fetch", ["pipeline.texture_fetch.filter=ewa"])]
+print("| cache |" + "".join(f" {p[0]} |" for p in paths))
+print("|---:|" + "---|" * len(paths))
+ideal = {p[0]: render(p[1], *p[3])["frame_cycles"] for p in paths}
+for kib in [1, 2, 4, 8, 16, 32, 64]:
+    row = f"| {kib} KiB |"
+    for name, scene, block, sets in paths:
+        s = render(scene, DRAM, f"pipeline.{block}.cache.size={kib * 1024}", *sets)
+        per_pixel, hit = client(s, block)
+        row += f" {s['frame_cycles'] / 1e6:.2f} M, {per_pixel:.1f} B, {100 * hit:.1f} % |"
+    print(row)
+print("| ideal |" + "".join(f" {ideal[p[0]] / 1e6:.2f} M |" for p in paths))
+
+print("\n## 2. The layouts (16 KiB caches): frame cycles, DRAM bytes per pixel of the client, hit rate\n")
+print("| layout | bump fetch | trilinear | framebuffer colour (bench) |")
+print("|---|---|---|---|")
+for layout in ["linear", "tiled", "morton"]:
+    row = f"| {layout} |"
+    for scene, block, sets in [("bench-bump-1080p", "bump_fetch", []),
+                               ("bench-texture-1080p", "texture_fetch", ["pipeline.texture_fetch.filter=trilinear"]),
+                               ("bench-1080p", "framebuffer", [])]:
+        s = render(scene, DRAM, f"pipeline.{block}.cache.layout={layout}", *sets)
+        per_pixel, hit = client(s, block)
+        row += f" {s['frame_cycles'] / 1e6:.2f} M, {per_pixel:.1f} B, {100 * hit:.1f} % |"
+    print(row)
+
+print("\n## 3. The bump paper's claim, Phong against bump, with the texture unit and its memory counted\n")
+print("| scene | memory | cycles per shaded pixel | DRAM bytes per shaded pixel | of which the bump fetch | bump fetch stall cycles per pixel |")
+print("|---|---|---:|---:|---:|---:|")
+for scene, label in [("bench-1080p", "Phong"), ("bench-bump-1080p", "bump")]:
+    for memory in ["ideal", "dram"]:
+        s = render(scene, f"pipeline.memory.model={memory}")
+        shaded = s["pixels"]["shaded"]
+        m = s["memory"]
+        total = m.get("dram_bytes", 0) / shaded if memory == "dram" else 0
+        bump = m.get("dram_bytes_by_client", {}).get("bump_fetch", 0) / shaded
+        stall = s["blocks"].get("bump_fetch", {}).get("memory", {}).get("stall_cycles", 0) / shaded
+        print(f"| {label} ({scene}) | {memory} | {s['frame_cycles'] / shaded:.2f} | {total:.1f} | {bump:.1f} | {stall:.1f} |")
+PY
+if ((doc)); then
+  python3 - "$out/memory.txt" "$root/docs/memory.md" <<'PY'
+import re, sys
+text, doc = open(sys.argv[1]).read(), sys.argv[2]
+tables = [t.strip() for t in re.findall(r"((?:^\|.*\n)+)", text, re.M)]
+page = open(doc).read()
+if len(tables) != 3:
+    sys.exit(f"memory.sh: {len(tables)} tables printed, 3 expected; {doc} left as it was")
+for n, table in enumerate(tables, 1):
+    page, found = re.subn(rf"(<!-- memory:{n} -->\n).*?(\n<!-- /memory:{n} -->)",
+                          lambda m: m.group(1) + table + m.group(2), page, flags=re.S)
+    if found != 1:
+        sys.exit(f"memory.sh: {doc} lacks the markers of table {n}; left as it was")
+open(doc, "w").write(page)
+PY
+fi
