@@ -31,8 +31,9 @@ std::vector<core::SettingSpec> PipelineDecl::all_settings() const {
         all.push_back({b.name + ".cache.ways", 4, {}, 1, 1 << 16, "its cache's associativity (dividing its lines)"});
         all.push_back({b.name + ".cache.layout", "tiled", layout_names(), 0, 0,
                        "how its surfaces lie in memory: linear, tiled (a line a tile) or morton"});
-        all.push_back({b.name + ".miss_queue", 64, {}, 0, 65536,
-                       "pixels it may hold waiting for memory, besides its pipeline registers"});
+        if (b.fifo != BlockDecl::Fifo::None)  // (a frame pass is timed as a whole)
+          all.push_back({b.name + ".miss_queue", 64, {}, 0, 65536,
+                         "pixels it may hold waiting for memory, besides its pipeline registers"});
       }
       if (b.formatted)
         all.push_back({b.name + ".format", "default", {}, 0, 0,

@@ -34,7 +34,8 @@ struct MemoryStats {
   Cache::Counts counts;
   uint64_t flushed = 0;       // dirty lines written back at the frame's end
   uint64_t stall_cycles = 0;  // Σ over its pixels of the cycles their data came after their work
-  uint64_t dram_bytes() const { return (counts.misses + counts.writebacks + flushed) * cache.line; }
+  uint64_t other_bytes = 0;   // through another cache of the block (texel_project's accumulators)
+  uint64_t dram_bytes() const { return (counts.misses + counts.writebacks + flushed) * cache.line + other_bytes; }
 };
 
 struct BlockStats {

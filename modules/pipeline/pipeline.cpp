@@ -93,7 +93,7 @@ Pipeline::Pipeline(const core::Scene& scene, const PipelineDecl& declaration)
       if (!all && b.needed && !b.needed(scene)) continue;
       Timing timing{uint64_t(settings_.integer(b.name + ".latency")), uint64_t(settings_.integer(b.name + ".ii")), 0};
       if (b.fifo != BlockDecl::Fifo::None) timing.fifo_depth = uint64_t(settings_.integer(b.name + ".fifo_depth"));
-      if (b.memory && settings_.string("memory.model") == "dram") {
+      if (b.memory && b.fifo != BlockDecl::Fifo::None && settings_.string("memory.model") == "dram") {
         timing.line_bytes = uint64_t(settings_.integer(b.name + ".cache.line"));
         timing.miss_queue = uint64_t(settings_.integer(b.name + ".miss_queue"));
       }

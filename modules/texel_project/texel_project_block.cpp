@@ -16,16 +16,32 @@ class TexelProjectBlock : public KernelBlock<TexelProjectKernel, TexelProject> {
   void finish(BlockReport& b, RenderResult&) override {
     b.details = kernel.details();
     b.numbers = kernel.numbers();
+    if (const MemoryClient* m = kernel.memory()) {  // texel reads; the accumulators' bytes besides
+      b.stats.memory = MemoryStats{m->cache().config(), m->cache().counts(), m->cache().dirty_lines(), 0};
+      b.stats.memory->other_bytes = kernel.accumulator_bytes();
+      b.details["accumulator_dram_bytes"] = kernel.accumulator_bytes();
+    }
   }
 };
 }  // namespace
 
 BlockDecl texel_project_block() {
-  BlockDecl d{"texel_project", {16, 1}, true, {{"units", 4, {}, 1, 64, "parallel splat units of texel_project"}},
+  BlockDecl d{"texel_project", {16, 1}, true,
+              {{"units", 4, {}, 1, 64, "parallel splat units of texel_project"},
+               {"accumulator_bits", 32, {}, 8, 64, "bits of each of a pixel's four accumulated numbers (DRAM model)"}},
               TexelProjectKernel::needed, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
-                return std::make_unique<TexelProjectBlock>(ctx.scene, ctx.integer("units"), ctx.format());
+                std::optional<TexelProjectKernel::Memory> memory;
+                if (const auto cache = cache_of(ctx)) {
+                  const core::Settings& s = ctx.settings;
+                  memory = TexelProjectKernel::Memory{
+                      *cache,
+                      DramTiming{uint64_t(s.integer("memory.latency")), uint64_t(s.integer("memory.bytes_per_cycle"))},
+                      ctx.integer("accumulator_bits")};
+                }
+                return std::make_unique<TexelProjectBlock>(ctx.scene, ctx.integer("units"), ctx.format(), memory);
               }};
   d.fifo = BlockDecl::Fifo::None;  // a pass of its own over the frame
+  d.memory = true;                 // texel reads and splats through caches (docs/memory.md)
   return d;
 }
 

@@ -32,7 +32,8 @@ bool TexelProjectKernel::needed(const core::Scene& scene) {
   return false;
 }
 
-TexelProjectKernel::TexelProjectKernel(const core::Scene& scene, int units, core::NumberFormat format)
+TexelProjectKernel::TexelProjectKernel(const core::Scene& scene, int units, core::NumberFormat format,
+                                       std::optional<Memory> memory)
     : scene_(scene),
       units_(std::max(1, units)),
       view_projection_(scene.camera.projection() * scene.camera.view()),
@@ -45,6 +46,24 @@ TexelProjectKernel::TexelProjectKernel(const core::Scene& scene, int units, core
     if (m.path == core::ShadingPath::TextureObject && mips_[size_t(m.texture)].empty())
       mips_[size_t(m.texture)] = core::mip_levels(scene.textures[size_t(m.texture)], false);
   }
+  if (memory) {  // every texture's levels one after another; the accumulators in a memory of their own
+    memory_settings_ = memory;
+    texel_memory_ = std::make_unique<MemoryClient>(memory->cache);
+    accumulators_ = std::make_unique<MemoryClient>(memory->cache);
+    for (size_t k = 0; k < mips_.size(); ++k) {
+      if (mips_[k].empty()) continue;
+      surfaces_[&scene.textures[k]] = texel_memory_->place(scene.textures[k].width, scene.textures[k].height, 4);
+      for (const auto& l : mips_[k]) surfaces_[&l] = texel_memory_->place(l.width, l.height, 4);
+    }
+    accumulator_surface_ =
+        accumulators_->place(scene.camera.width, scene.camera.height, uint32_t((4 * memory->accumulator_bits + 7) / 8));
+  }
+}
+
+uint64_t TexelProjectKernel::accumulator_bytes() const {
+  if (!accumulators_) return 0;
+  const Cache& c = accumulators_->cache();
+  return (c.counts().misses + c.counts().writebacks + c.dirty_lines()) * c.config().line;
 }
 
 void TexelProjectKernel::run(FramebufferKernel& fb) {
@@ -87,6 +106,12 @@ void TexelProjectKernel::run(FramebufferKernel& fb) {
   uint64_t busiest = 0;
   for (uint64_t u : unit_texels_) busiest = std::max(busiest, u);
   cycles_ = busiest + (covered_ + uint64_t(units_) - 1) / uint64_t(units_);
+  if (texel_memory_) {  // the DRAM's bytes at its rate, then its latency
+    const Cache& c = texel_memory_->cache();
+    const uint64_t bytes = (c.counts().misses + c.dirty_lines()) * c.config().line + accumulator_bytes();
+    const DramTiming& d = memory_settings_->dram;
+    if (bytes > 0) cycles_ = std::max(cycles_, (bytes + d.bytes_per_cycle - 1) / d.bytes_per_cycle) + d.latency;
+  }
 }
 
 // One triangle's splatting once it is set up: the level sampled and the sampling rate
@@ -108,6 +133,7 @@ struct TexelProjectKernel::Splat {
   glm::dvec4 A_x, A_y, a0;          // M*: clip = A_x·(x' − x'_A) + A_y·(y' − y'_A) + clip(A)
   long tile_row0 = 0;
   std::vector<std::pair<long, long>> tile_span;  // per row of tiles: the tiles read
+  Surface texture_surface, tex_surface;          // where level 0 and the level sampled lie (DRAM model)
 };
 
 namespace {
@@ -163,6 +189,7 @@ void TexelProjectKernel::splat_constant(const Splat& s, const core::ClipPolygon&
       if ((*s.visible)[at] != s.source + 1) continue;
       for (int k = 0; k < 3; ++k) accumulated_[at * 4 + size_t(k)] += c[k];
       accumulated_[at * 4 + 3] += 1;
+      if (accumulators_) accumulators_->access(accumulator_surface_, x, y, true);
       ++splats_;
     }
 }
@@ -291,6 +318,11 @@ void TexelProjectKernel::splat_samples(Splat& s) {
   Sampler bilinear(Filter::Bilinear, 1);
   MipMap finest;
   finest.levels.push_back(s.texture);
+  if (texel_memory_) {
+    s.texture_surface = surfaces_.at(s.texture), s.tex_surface = surfaces_.at(s.tex);
+    finest.surfaces.push_back(s.texture_surface);
+    bilinear.set_memory(texel_memory_.get());
+  }
   uint64_t nonfinite_positions = 0;
   for (long j = s.j0; j <= s.j1; ++j) {
     long first, end;
@@ -359,6 +391,7 @@ void TexelProjectKernel::sample_colour(const Splat& s, long i, long j, double u,
       tx = int(std::clamp<long>(i, 0, tex.width - 1)), ty = int(std::clamp<long>(j, 0, tex.height - 1));
     const glm::vec4& c = tex.texels[size_t(ty) * size_t(tex.width) + size_t(tx)];
     colour[0] = c.r, colour[1] = c.g, colour[2] = c.b;
+    if (texel_memory_) texel_memory_->access(s.tex_surface, tx, ty, false);
     return;
   }
   Ops sampler_ops;
@@ -395,6 +428,7 @@ void TexelProjectKernel::splat(const Splat& s, T x, T y, const float colour[3]) 
     if ((*s.visible)[at] != s.source + 1) continue;  // the depth test: another surface is seen here
     for (int c = 0; c < 3; ++c) accumulated_[at * 4 + size_t(c)] += double(weight[k] * colour[c]);
     accumulated_[at * 4 + 3] += double(weight[k]);
+    if (accumulators_) accumulators_->access(accumulator_surface_, px[k], py[k], true);
     ++splats_;
     ops_ += kOpsPerAccumulation;
     if ((((px[k] + 4) >> 2) + ((py[k] + 4) >> 2)) % units_ != owner) ++cross_unit_splats_;

@@ -25,7 +25,16 @@
 // The work runs after the frame's rasterization (the visibility it tests against must
 // be final): a second pass. The texels are independent; the stats show how they divide
 // across N parallel splat units.
+//
+// Under the DRAM model (docs/memory.md) its texel reads go through its cache, and each
+// splat is a read-modify-write of the pixel's accumulator (Σ s·c and Σ s, four numbers
+// of pipeline.texel_project.accumulator_bits) through a second cache of the same
+// settings. The pass is timed as a whole: its cycles are the larger of its units' work
+// and its DRAM bytes at the DRAM's rate, plus one latency.
+#include <memory>
+#include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -33,6 +42,8 @@
 #include "shadetlm/modules/common/number.hpp"
 #include "shadetlm/modules/common/packet.hpp"
 #include "shadetlm/modules/framebuffer/framebuffer_kernel.hpp"
+#include "shadetlm/modules/memory/cache.hpp"
+#include "shadetlm/modules/memory/dram.hpp"
 
 namespace shadetlm::modules {
 
@@ -51,7 +62,15 @@ class TexelProjectKernel {
  public:
   // The projection of each texel and its splat weights run in `format`
   // (pipeline.texel_project.format).
-  TexelProjectKernel(const core::Scene& scene, int units, core::NumberFormat format = {});
+  // memory: its caches' settings and the DRAM's timing (none: ideal memory);
+  // accumulator_bits: of each of a pixel's four accumulated numbers.
+  struct Memory {
+    CacheConfig cache;
+    DramTiming dram;
+    int accumulator_bits = 32;
+  };
+  TexelProjectKernel(const core::Scene& scene, int units, core::NumberFormat format = {},
+                     std::optional<Memory> memory = std::nullopt);
   static bool needed(const core::Scene& scene);
 
   // The second pass over the frame in `fb`: splat, resolve, composite.
@@ -61,7 +80,11 @@ class TexelProjectKernel {
   // Cycles of the pass at II 1: the busiest splat unit (units own interleaved 4×4 pixel
   // tiles; a texel goes to the owner of its first pixel, and its splats into neighbouring
   // tiles are writes across units, counted), then the resolve, spread likewise.
+  // Under the DRAM model, at least its DRAM bytes at the DRAM's rate, plus a latency.
   uint64_t cycles() const { return cycles_; }
+  // Its texel reads' cache (none: ideal memory); its accumulators' DRAM bytes.
+  const MemoryClient* memory() const { return texel_memory_.get(); }
+  uint64_t accumulator_bytes() const;
   nlohmann::json details() const;  // its figures in the statistics
   // Non-finite counts are of the texels' screen positions and w (dropped as off the
   // frame), in reduced formats only: in float32, w > 1e-6 keeps the position finite.
@@ -126,6 +149,10 @@ class TexelProjectKernel {
   uint64_t polygons_ = 0, lod_computations_ = 0, texels_ = 0, splats_ = 0, covered_ = 0, holes_ = 0;
   uint64_t cycles_ = 0, oversampled_ = 0, budget_limited_ = 0, cross_unit_splats_ = 0;
   double weight_sum_error_ = 0;
+  std::optional<Memory> memory_settings_;
+  std::unique_ptr<MemoryClient> texel_memory_, accumulators_;  // none: ideal memory
+  std::unordered_map<const core::Texture*, Surface> surfaces_;  // where each level lies
+  Surface accumulator_surface_;
   NumberContext numbers_;
   uint64_t nonfinite_ = 0;
 };
