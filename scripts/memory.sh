@@ -8,9 +8,12 @@
 #  2. the three layouts at the default 16 KiB cache, for the bump fetch, the trilinear
 #     filter and the framebuffer's colour;
 #  3. the bump-mapping paper's cost claim with the texture unit and its memory counted:
-#     Phong (bench) against bump (bench-bump), ideal memory against the DRAM.
+#     Phong (bench) against bump (bench-bump), ideal memory against the DRAM;
+#  4. the object-space texturing paper's comparison in cycles and bytes: a checkered
+#     plane at 0°, 45°, 75° and 85° from the view direction (640×480), texel_project
+#     against the screen-space filters, and its accumulators at 16, 32 and 64 bits.
 # Usage: scripts/memory.sh [--doc]   (--doc: the tables into docs/memory.md, between
-# its <!-- memory:N --> markers). About 5 minutes.
+# its <!-- memory:N --> markers). About 8 minutes.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bin=$root/build/app/shadetlm
@@ -24,7 +27,8 @@ import json, subprocess, sys
 bin, root, out = sys.argv[1:4]
 
 def render(scene, *sets):
-    args = [bin, "render", f"{root}/scenes/{scene}.json", "-o", f"{out}/f.exr", "--stats", f"{out}/s.json"]
+    path = scene if scene.endswith(".json") else f"{root}/scenes/{scene}.json"
+    args = [bin, "render", path, "-o", f"{out}/f.exr", "--stats", f"{out}/s.json"]
     for s in sets:
         args += ["--set", s]
     subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
@@ -78,6 +82,42 @@ for scene, label in [("bench-1080p", "Phong"), ("bench-bump-1080p", "bump")]:
         bump = m.get("dram_bytes_by_client", {}).get("bump_fetch", 0) / shaded
         stall = s["blocks"].get("bump_fetch", {}).get("memory", {}).get("stall_cycles", 0) / shaded
         print(f"| {label} ({scene}) | {memory} | {s['frame_cycles'] / shaded:.2f} | {total:.1f} | {bump:.1f} | {stall:.1f} |")
+
+print("\n## 4. Object-space texturing against the screen-space filters, in cycles and DRAM bytes per covered pixel\n")
+import math
+def plane(view, path):
+    t = math.radians(view)
+    return {"format": 1,
+            "camera": {"position": [0, 2.6 * math.sin(t), 2.6 * math.cos(t)], "target": [0, 0, 0], "fov_y": 40,
+                       "resolution": [640, 480], "near": 0.05, "far": 100, "local_viewer": False},
+            "ambient": [0.25, 0.25, 0.25],
+            "lights": [{"type": "directional", "direction": [-0.3, -0.6, -0.7], "intensity": 0.8}],
+            "textures": {"t": {"type": "checker", "size": [512, 512], "cells": 16}},
+            "materials": {"m": {"texture": "t", "ambient": [1, 1, 1], "diffuse": [0.9, 0.9, 0.9],
+                                "specular": [0, 0, 0], "path": path}},
+            "objects": [{"shape": "plane", "size": [3, 3], "tessellation": [4, 4], "uv_repeat": [2, 2],
+                         "material": "m"}]}
+configs = [("texel_project, 32-bit accumulators", "texture-object", []),
+           ("texel_project, 16-bit", "texture-object", ["pipeline.texel_project.accumulator_bits=16"]),
+           ("texel_project, 64-bit", "texture-object", ["pipeline.texel_project.accumulator_bits=64"]),
+           ("trilinear", "texture-screen", ["pipeline.texture_fetch.filter=trilinear"]),
+           ("anisotropic 4", "texture-screen", ["pipeline.texture_fetch.filter=anisotropic"]),
+           ("EWA", "texture-screen", ["pipeline.texture_fetch.filter=ewa"])]
+views = [0, 45, 75, 85]
+print("| texturing |" + "".join(f" {v}° |" for v in views))
+print("|---|" + "---|" * len(views))
+for name, path, sets in configs:
+    row = f"| {name} |"
+    for v in views:
+        json.dump(plane(v, path), open(f"{out}/plane.json", "w"))
+        ideal = render(f"{out}/plane.json", *sets)
+        s = render(f"{out}/plane.json", DRAM, *sets)
+        shaded = max(s["pixels"]["shaded"], 1)
+        by = s["memory"]["dram_bytes_by_client"]
+        texturing = by.get("texel_project", 0) + by.get("texture_fetch", 0)
+        row += (f" {s['frame_cycles'] / shaded:.2f} c ({ideal['frame_cycles'] / shaded:.2f} ideal), "
+                f"{s['memory']['dram_bytes_per_shaded_pixel']:.1f} B ({texturing / shaded:.1f} texturing) |")
+    print(row)
 PY
 if ((doc)); then
   python3 - "$out/memory.txt" "$root/docs/memory.md" <<'PY'
@@ -85,8 +125,8 @@ import re, sys
 text, doc = open(sys.argv[1]).read(), sys.argv[2]
 tables = [t.strip() for t in re.findall(r"((?:^\|.*\n)+)", text, re.M)]
 page = open(doc).read()
-if len(tables) != 3:
-    sys.exit(f"memory.sh: {len(tables)} tables printed, 3 expected; {doc} left as it was")
+if len(tables) != 4:
+    sys.exit(f"memory.sh: {len(tables)} tables printed, 4 expected; {doc} left as it was")
 for n, table in enumerate(tables, 1):
     page, found = re.subn(rf"(<!-- memory:{n} -->\n).*?(\n<!-- /memory:{n} -->)",
                           lambda m: m.group(1) + table + m.group(2), page, flags=re.S)

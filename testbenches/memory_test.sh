@@ -26,6 +26,8 @@ run whole "${dram[@]}" --set pipeline.bump_fetch.cache.size=4194304 --set pipeli
 run narrow "${dram[@]}" --set pipeline.memory.bytes_per_cycle=2
 run unhidden "${dram[@]}" --set pipeline.bump_fetch.miss_queue=0 --set pipeline.framebuffer.miss_queue=0
 run slow "${dram[@]}" --set pipeline.memory.latency=2000
+"$bin" render "$src/golden/bump-knot/scene.json" -o "$tmp/f.exr" --stats "$tmp/timeline-stats.json" \
+  --timeline "$tmp/timeline.json" "${dram[@]}" --set pipeline.bump_fetch.cache.size=1024 >/dev/null
 
 python3 - "$tmp" <<'PY'
 import json, sys
@@ -45,6 +47,16 @@ checks = [
     ("a 2000-cycle DRAM costs cycles over 200", cycles["slow"] > cycles["base"]),
     ("the ten-times latency stalls the bump fetch longer", bump["slow"]["stall_cycles"] > bump["base"]["stall_cycles"]),
 ]
+# The timeline's DRAM counter: every byte the main pass's clients moved while it ran
+# (the lines dirty at the frame's end are written back after it).
+timeline = json.load(open(f"{d}/timeline.json"))["traceEvents"]
+stats = json.load(open(f"{d}/timeline-stats.json"))
+bin_cycles = stats["utilization_over_time"]["bin_cycles"]
+counted = sum(e["args"]["bytes_per_cycle"] * bin_cycles for e in timeline if e.get("name") == "DRAM bandwidth")
+moved = sum((m["misses"] + m["writebacks"] - m["writebacks_at_end"]) * m["cache"]["line"]
+            for b in stats["blocks"].values() if (m := b.get("memory")))
+checks.append((f"the timeline's DRAM counter holds the bytes the caches moved ({counted:.0f} of {moved})",
+               moved > 0 and abs(counted - moved) < 1e-6 * moved))
 failed = 0
 for name, ok in checks:
     print(("ok " if ok else "FAIL ") + name)

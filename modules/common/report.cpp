@@ -58,6 +58,7 @@ nlohmann::json RenderResult::stats_json() const {
                       {"hits", c.hits},
                       {"misses", c.misses},
                       {"writebacks", c.writebacks + m.flushed},
+                      {"writebacks_at_end", m.flushed},  // dirty at the frame's end (not timed)
                       {"hit_rate", c.accesses > 0 ? double(c.hits) / double(c.accesses) : 1.0},
                       {"dram_bytes", m.dram_bytes()},
                       {"stall_cycles", m.stall_cycles}};
@@ -109,6 +110,14 @@ nlohmann::json RenderResult::stats_json() const {
     nlohmann::json names = nlohmann::json::array();
     for (const auto& [busy, name] : busiest) names.push_back(busy > 0 ? nlohmann::json(name) : nlohmann::json());
     over_time["bottleneck"] = names;
+    if (dram) {  // the DRAM's share of its bandwidth per bin (docs/memory.md)
+      std::vector<double> use(bins, 0.0);
+      for (size_t i = 0; i < bins && i < dram_bytes_per_bin.size(); ++i) {
+        const uint64_t length = std::min<uint64_t>(bin_cycles, frame_cycles - i * bin_cycles);
+        use[i] = double(dram_bytes_per_bin[i]) / (double(length) * double(dram->bytes_per_cycle));
+      }
+      over_time["dram"] = use;
+    }
     j["utilization_over_time"] = over_time;
   }
   const nlohmann::json total = total_ops().to_json();

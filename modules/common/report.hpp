@@ -73,6 +73,7 @@ struct RenderResult {
   std::string timing_log;           // Inspect::timing_log: the main pass's times (modules/common/timing.hpp)
   double precompute_s = 0;          // maps built when the pipeline was (not in wall_s)
   std::optional<DramTiming> dram;   // the DRAM model's (none: ideal memory)
+  std::vector<uint64_t> dram_bytes_per_bin;  // its bytes per bin_cycles (kept with bin_cycles)
   uint64_t nonfinite_replaced = 0;   // NaN or infinite colour, normal, depth or specular values that reached the framebuffer (replaced)
 
   const BlockReport* bottleneck() const;  // the block with the most busy cycles

@@ -26,6 +26,10 @@ void Timeline::write(const std::string& path, const std::vector<std::string>& na
     for (const auto& c : counts_)
       out << ",\n{\"ph\": \"C\", \"pid\": 1, \"name\": \"" << names[c.block] << " FIFO\", \"ts\": "
           << double(c.cycle) / clock_mhz << ", \"args\": {\"pixels\": " << c.fifo << "}}";
+    for (size_t k = 0; k < dram_bytes_.size(); ++k)  // bytes a cycle over each bin
+      out << ",\n{\"ph\": \"C\", \"pid\": 1, \"name\": \"DRAM bandwidth\", \"ts\": "
+          << double(k * dram_bin_) / clock_mhz << ", \"args\": {\"bytes_per_cycle\": "
+          << double(dram_bytes_[k]) / double(dram_bin_) << "}}";
     out << "\n]}\n";
     if (!out) throw std::runtime_error(path + ": cannot write the timeline");
   });

@@ -26,6 +26,10 @@ class Timeline {
     slices_.push_back({block, start, busy, pixels, triangle, stalled});
   }
   void count(uint32_t block, uint64_t cycle, uint32_t fifo) { counts_.push_back({block, cycle, fifo}); }
+  // The DRAM's bytes per bin of `bin_cycles` (docs/memory.md): a counter of its own.
+  void set_dram(uint64_t bin_cycles, std::vector<uint64_t> bytes_per_bin) {
+    dram_bin_ = bin_cycles, dram_bytes_ = std::move(bytes_per_bin);
+  }
   const std::vector<Slice>& slices() const { return slices_; }
   // Writes the JSON (through a temporary and a rename); times in µs at `clock_mhz`.
   void write(const std::string& path, const std::vector<std::string>& block_names, double clock_mhz) const;
@@ -33,6 +37,8 @@ class Timeline {
  private:
   std::vector<Slice> slices_;
   std::vector<Count> counts_;
+  uint64_t dram_bin_ = 0;
+  std::vector<uint64_t> dram_bytes_;
 };
 
 }  // namespace shadetlm::modules

@@ -136,6 +136,9 @@ class Top : public sc_core::sc_module {
       if (line_->dram()) log_->memory(dram);
     }
     for (size_t i = 0; i <= line.size(); ++i) modules_[i]->join_line(line_.get(), int(i) - 1);
+    // The DRAM's bytes over time: for the timeline's counter and the stats' over_time.
+    if (line_->dram() && (inspect.bin_cycles > 0 || !inspect.timeline.empty()))
+      line_->dram()->keep_histogram(inspect.bin_cycles > 0 ? inspect.bin_cycles : kTimelineDramBin);
 
     const core::Camera& camera = pipeline.scene().camera;
     region_ = inspect.region;
@@ -155,7 +158,10 @@ class Top : public sc_core::sc_module {
   TimingLog* log() const { return log_.get(); }
   const std::vector<std::unique_ptr<BlockInfo>>& modules() const { return modules_; }
   const Tracer* tracer() const { return tracer_.get(); }
-  const Timeline& timeline_slices() const { return timeline_; }
+  Timeline& timeline_slices() { return timeline_; }
+  PixelLine& line() { return *line_; }
+  // The timeline's DRAM counter, without a bin asked for: a point every this many cycles.
+  static constexpr uint64_t kTimelineDramBin = 256;
   std::vector<std::string> names() const {
     std::vector<std::string> n;
     for (const auto& m : modules_) n.push_back(m->block_name());
@@ -257,6 +263,11 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
     const double ps = 1e6 / clock_mhz;
     write_gtkw(inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw", inspect.vcd, top.tracer()->probes(),
                double(top.tracer()->first_cycle()) * ps, double(top.tracer()->last_cycle()) * ps);
+  }
+  if (const Dram* dram = top.line().dram(); dram && !dram->bytes_per_bin().empty()) {
+    const uint64_t bin = inspect.bin_cycles > 0 ? inspect.bin_cycles : Top::kTimelineDramBin;
+    top.timeline_slices().set_dram(bin, dram->bytes_per_bin());
+    if (inspect.bin_cycles > 0) r.dram_bytes_per_bin = dram->bytes_per_bin();
   }
   if (!inspect.timeline.empty()) top.timeline_slices().write(inspect.timeline, top.names(), clock_mhz);
   return r;
