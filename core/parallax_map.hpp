@@ -96,9 +96,10 @@ struct CellMarch {
   int cells = 0;
   bool hit = false;
 };
-template <class Real>
+// `visit(i, j)` is told each cell before its test (the tracer's map reads).
+template <class Real, class Visit>
 CellMarch<Real> march_cells(const HeightField& f, Real ox, Real oy, Real oz, Real dx, Real dy, Real dz,
-                            Real slices, int max_cells = 1 << 30) {
+                            Real slices, int max_cells, Visit&& visit) {
   CellMarch<Real> r;
   if (!(dz < 0)) return r;
   const Real t_floor = std::max(Real(0), oz) / -dz;
@@ -115,6 +116,7 @@ CellMarch<Real> march_cells(const HeightField& f, Real ox, Real oy, Real oz, Rea
     const Real t_end = std::min(std::min(t_x, t_y), t_floor);
     ++r.cells;
     const Real px = ox + t * dx - ci, py = oy + t * dy - cj, pz = oz + t * dz;
+    visit(int(ci), int(cj));
     const Real s = cell_hit(f, int(ci), int(cj), std::clamp(px, Real(0), Real(1)), std::clamp(py, Real(0), Real(1)),
                             pz, dx, dy, dz, std::max(Real(0), t_end - t), slices);
     if (s >= 0) {
@@ -131,6 +133,11 @@ CellMarch<Real> march_cells(const HeightField& f, Real ox, Real oy, Real oz, Rea
   }
   r.t = t;
   return r;
+}
+template <class Real>
+CellMarch<Real> march_cells(const HeightField& f, Real ox, Real oy, Real oz, Real dx, Real dy, Real dz,
+                            Real slices, int max_cells = 1 << 30) {
+  return march_cells(f, ox, oy, oz, dx, dy, dz, slices, max_cells, [](int, int) {});
 }
 
 // A volume of W × H × D values, voxel (i, j, k) at (k·H + j)·W + i, with the parameters

@@ -85,6 +85,11 @@ check "framebuffer writes back, lines of 16 bytes" 2 "$src/golden/demo/scene.jso
   --set pipeline.framebuffer.cache.layout=linear --set pipeline.framebuffer.miss_queue=1 --set pipeline.memory.latency=9
 check "two texture clients share the DRAM" 2 "$src/golden/parallax-steps/scene.json" "${dram[@]}" \
   --set pipeline.texture_fetch.cache.size=512 --set pipeline.framebuffer.cache.size=512 --set pipeline.memory.bytes_per_cycle=1
+# The parallax tracer's map reads: the refined distance map, relief and cone stepping.
+check "parallax maps through a 1 KiB cache" 2 "$src/scenes/bench-parallax-1080p.json" "${dram[@]}" \
+  --set 'camera.resolution=[240,135]' --set pipeline.parallax.cache.size=1024 --set pipeline.parallax.miss_queue=8 \
+  --set pipeline.memory.bytes_per_cycle=8
+
 # The raster's depth reads: hidden pixels' misses too, the walk waiting for each (no
 # miss queue) or for its one miss entry.
 check "depth misses stop the walk" 3 "$src/golden/knot/scene.json" "${dram[@]}" --set pipeline.raster.miss_queue=0 \

@@ -51,7 +51,8 @@ bool finite(T v) {
 // The texture unit's bilinear height at (x, y), in float32 like every texture read; the
 // tracer takes it into its format.
 template <class T>
-T height_at(const core::HeightField& f, T x, T y) {
+T height_at(const core::HeightField& f, T x, T y, MapReads* reads) {
+  if (reads) reads->bilinear(float(x), float(y));
   return T(core::bilinear_height<float>(f, float(x), float(y)));
 }
 
@@ -60,12 +61,14 @@ T height_at(const core::HeightField& f, T x, T y) {
 // the tracer's format; its result is taken back into the format.
 template <class T>
 void finish_cells(const core::ParallaxSettings& s, const ParallaxMaps& m, T& x, T& y, T& z, T dx, T dy, T dz,
-                  ParallaxTrace& r, Ops* ops) {
+                  ParallaxTrace& r, Ops* ops, MapReads* reads) {
   const int budget = std::max(1, s.max_iterations - r.iterations);
   if (!finite(x) || !finite(y) || !finite(z)) return;
   const float fdx = float(dx), fdy = float(dy), fdz = float(dz);
-  const auto march =
-      core::march_cells<float>(m.field, float(x), float(y), float(z), fdx, fdy, fdz, float(m.slices), budget);
+  const auto march = core::march_cells<float>(m.field, float(x), float(y), float(z), fdx, fdy, fdz,
+                                              float(m.slices), budget, [&](int i, int j) {
+                                                if (reads) reads->cell(i, j);
+                                              });
   const T t = T(march.t);
   x += t * dx, y += t * dy, z += t * dz;
   r.iterations += march.cells;
@@ -81,6 +84,7 @@ struct Ray {
   T x0, y0, a, b, c;  // the entry (texels) and the tangent-space direction
   T W, H, D;          // the map's size: texels across and down, slices deep
   T dx, dy, dz;
+  MapReads* reads = nullptr;  // the map reads (DRAM model)
 };
 
 // The ray of a pixel; false where there is none to trace (no depth, a ray leaving the
@@ -113,7 +117,7 @@ template <class T>
 void trace_offset(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, ParallaxTrace& r,
                   Ops* ops) {
   const T one = T(1.0f), a = ray.a, b = ray.b, c = ray.c;
-  const T h = height_at(m.field, ray.x0, ray.y0);
+  const T h = height_at(m.field, ray.x0, ray.y0, ray.reads);
   const T inv = one / sqrt_op(a * a + b * b + c * c);
   const T shift = T(float(s.depth)) * (one - h) * inv;
   r.x = float(ray.x0 + shift * a * ray.W), r.y = float(ray.y0 - shift * b * ray.H);
@@ -128,7 +132,7 @@ void pom_finish(const core::ParallaxSettings&, const ParallaxMaps& m, const Ray<
   const T D = ray.D, one = T(1.0f), zero = T(0.0f);
   if (pz == D) {
     // Under the relief at the first layer: the entry's height, for the line below.
-    ph = D * height_at(m.field, ray.x0, ray.y0);
+    ph = D * height_at(m.field, ray.x0, ray.y0, ray.reads);
     ++r.iterations, r.fetches += 4;
     if (ops) *ops += kOpsHeightRead;
   }
@@ -145,7 +149,7 @@ void relief_finish(const core::ParallaxSettings& s, const ParallaxMaps& m, const
   const T half = T(0.5f);
   for (int i = 0; i < s.binary_steps && r.iterations < s.max_iterations; ++i) {
     const T mx = (px + x) * half, my = (py + y) * half, mz = (pz + z) * half;
-    const T mh = ray.D * height_at(m.field, mx, my);
+    const T mh = ray.D * height_at(m.field, mx, my, ray.reads);
     ++r.iterations, r.fetches += 4;
     if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 3};
     if (mz <= mh) x = mx, y = my, z = mz;
@@ -170,7 +174,7 @@ bool trace_layers(const core::ParallaxSettings& s, const ParallaxMaps& m, const 
     const T along = T(float(i)) * step;
     x = ray.x0 + along * ray.dx, y = ray.y0 + along * ray.dy, z = D + along * ray.dz;
     if (!finite(x) || !finite(y)) return false;
-    h = D * height_at(f, x, y);
+    h = D * height_at(f, x, y, ray.reads);
     ++r.iterations, r.fetches += 4;
     if (ops) *ops += kOpsLayer;
     if (z <= h) break;
@@ -194,6 +198,7 @@ bool trace_spheres(const core::ParallaxSettings& s, const ParallaxMaps& m, const
   const T near = T(kParallaxNear);
   while (r.iterations < s.max_iterations) {
     if (!finite(x) || !finite(y) || !finite(z)) return false;
+    if (ray.reads) ray.reads->voxel(float(x), float(y), float(z), m.volume);
     const T d = T(m.volume.sample(float(x), float(y), float(z)));
     ++r.iterations, ++r.fetches;
     if (ops) *ops += kOpsSphere;
@@ -201,7 +206,7 @@ bool trace_spheres(const core::ParallaxSettings& s, const ParallaxMaps& m, const
     x += d * ray.dx, y += d * ray.dy, z += d * ray.dz;
     ++r.skips;
   }
-  if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, ray.dx, ray.dy, ray.dz, r, ops);
+  if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, ray.dx, ray.dy, ray.dz, r, ops, ray.reads);
   return true;
 }
 
@@ -220,6 +225,7 @@ bool trace_cones(const core::ParallaxSettings& s, const ParallaxMaps& m, const R
     if (i < 0) i += f.width;
     if (j < 0) j += f.height;
     const size_t cell = size_t(j) * size_t(f.width) + size_t(i);
+    if (ray.reads) ray.reads->cone(i, j);
     const T above = z - T(m.cone.apex[cell]), ratio = T(m.cone.ratio[cell]);
     ++r.iterations, ++r.fetches;
     if (ops) *ops += kOpsCone;
@@ -228,7 +234,7 @@ bool trace_cones(const core::ParallaxSettings& s, const ParallaxMaps& m, const R
     x += t * ray.dx, y += t * ray.dy, z += t * ray.dz;
     ++r.skips;
   }
-  if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, ray.dx, ray.dy, ray.dz, r, ops);
+  if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, ray.dx, ray.dy, ray.dz, r, ops, ray.reads);
   return true;
 }
 
@@ -236,10 +242,11 @@ bool trace_cones(const core::ParallaxSettings& s, const ParallaxMaps& m, const R
 // tracers, and the uv out.
 template <class T>
 ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0f, float y0f, float af,
-                       float bf, float cf, Ops* ops) {
+                       float bf, float cf, Ops* ops, MapReads* reads) {
   ParallaxTrace r;
   r.x = x0f, r.y = y0f;
   Ray<T> ray;
+  ray.reads = reads;
   if (!make_ray(s, m, x0f, y0f, af, bf, cf, ops, ray)) return r;
   if (s.method == core::ParallaxMethod::Offset) {
     trace_offset(s, m, ray, r, ops);
@@ -267,12 +274,60 @@ ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, f
 }  // namespace
 
 ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0, float y0, float a,
-                             float b, float c, Ops* ops, NumberContext* numbers) {
+                             float b, float c, Ops* ops, NumberContext* numbers, MapReads* reads) {
   if (!numbers || numbers->format.kind == core::NumberFormat::Kind::Float32)
-    return trace_as<float>(s, m, x0, y0, a, b, c, ops);  // straight: one call a pixel
+    return trace_as<float>(s, m, x0, y0, a, b, c, ops, reads);  // straight: one call a pixel
   ParallaxTrace r;
-  with_number_type(*numbers, [&](auto zero) { r = trace_as<decltype(zero)>(s, m, x0, y0, a, b, c, ops); });
+  with_number_type(*numbers, [&](auto zero) { r = trace_as<decltype(zero)>(s, m, x0, y0, a, b, c, ops, reads); });
   return r;
+}
+
+MapReads::Place MapReads::place(const ParallaxMaps& m, bool distance, bool cone) {
+  Place p;
+  p.height = memory_.place(m.field.width, m.field.height, 4);
+  if (distance)
+    for (int k = 0; k < m.volume.slices; ++k) p.slices.push_back(memory_.place(m.volume.width, m.volume.height, 4));
+  if (cone) p.cone = memory_.place(m.cone.width, m.cone.height, 8);
+  return p;
+}
+
+void MapReads::texel(const Surface& s, int x, int y) {
+  x %= s.width, y %= s.height;
+  if (x < 0) x += s.width;
+  if (y < 0) y += s.height;
+  const uint64_t line = address(memory_.layout(), s, memory_.line_bytes(), x, y) / memory_.line_bytes();
+  for (int k = 0; k < count_; ++k)
+    if (lines_[k] == line) return;
+  if (count_ < int(std::size(lines_))) lines_[count_++] = line;
+}
+
+void MapReads::bilinear(float x, float y) {
+  if (!std::isfinite(x) || !std::isfinite(y) || std::abs(x) > 1e9f || std::abs(y) > 1e9f) return;
+  const int i = int(std::floor(x)), j = int(std::floor(y));
+  cell(i, j);
+}
+
+void MapReads::cell(int i, int j) {
+  const Surface& h = place_->height;
+  texel(h, i, j), texel(h, i + 1, j), texel(h, i, j + 1), texel(h, i + 1, j + 1);
+}
+
+void MapReads::voxel(float x, float y, float z, const core::VolumeMap& v) {
+  if (place_->slices.empty() || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) ||
+      std::abs(x) > 1e9f || std::abs(y) > 1e9f)
+    return;
+  const int k = std::clamp(int(std::floor(std::clamp(z, -1.0f, float(v.slices)))), 0, v.slices - 1);
+  texel(place_->slices[size_t(k)], int(std::floor(x)), int(std::floor(y)));
+}
+
+void MapReads::cone(int i, int j) {
+  if (place_->cone.width > 0) texel(place_->cone, i, j);
+}
+
+uint16_t MapReads::end() {
+  for (int k = 0; k < count_; ++k) memory_.read_line(lines_[k]);
+  count_ = 0;
+  return memory_.take_pixel_lines();
 }
 
 bool ParallaxKernel::needed(const core::Scene& scene) {
@@ -281,7 +336,8 @@ bool ParallaxKernel::needed(const core::Scene& scene) {
   return false;
 }
 
-ParallaxKernel::ParallaxKernel(const core::Scene& scene, core::NumberFormat format, int64_t cell_cycles)
+ParallaxKernel::ParallaxKernel(const core::Scene& scene, core::NumberFormat format, int64_t cell_cycles,
+                               std::optional<CacheConfig> cache)
     : scene_(scene), cell_cycles_(cell_cycles), numbers_(format) {
   maps_.resize(scene.materials.size());
   for (const auto& o : scene.objects) {
@@ -291,6 +347,17 @@ ParallaxKernel::ParallaxKernel(const core::Scene& scene, core::NumberFormat form
     slot = std::make_unique<ParallaxMaps>(
         build_parallax_maps(scene.textures[size_t(m.height_map)], m.parallax, scene.file));
     precompute_s_ += slot->precompute_s;
+  }
+  if (cache) {  // every material's maps one after another in the tracer's memory
+    memory_ = std::make_unique<MemoryClient>(*cache);
+    reads_ = std::make_unique<MapReads>(*memory_);
+    places_.resize(scene.materials.size());
+    for (size_t k = 0; k < maps_.size(); ++k)
+      if (maps_[k]) {
+        const core::ParallaxMethod method = scene.materials[k].parallax.method;
+        places_[k] = reads_->place(*maps_[k], method == core::ParallaxMethod::Distance,
+                                   method == core::ParallaxMethod::Cone);
+      }
   }
 }
 
@@ -316,7 +383,9 @@ void ParallaxKernel::process(SpanPacket& p) {
     // the shift found is added to the uv as it came.
     float x0 = u * W - 0.5f, y0 = (1 - v) * H - 0.5f;
     x0 -= W * std::floor(x0 / W), y0 -= H * std::floor(y0 / H);
-    if (t.parallax_frame) r = trace_parallax(m.parallax, maps, x0, y0, a, b, c, &ops_, &numbers_);
+    if (reads_) reads_->begin(places_[size_t(&m - scene_.materials.data())]);
+    if (t.parallax_frame) r = trace_parallax(m.parallax, maps, x0, y0, a, b, c, &ops_, &numbers_, reads_.get());
+    if (reads_) lines_[i] = reads_->end();
     const bool moved = r.iterations > 0;
     p.uvp[0][i] = moved ? u + (r.x - x0) / W : u;
     p.uvp[1][i] = moved ? v - (r.y - y0) / H : v;

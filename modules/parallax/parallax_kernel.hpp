@@ -17,13 +17,19 @@
 // differ only by the skipping. Iterations: one per map or height read of the loop (a
 // cell test counts one, with four texel fetches). Without early exit (parallax.early_exit
 // = false) a pixel pays the loop's full length: every layer, or max_iterations.
+//
+// Under the DRAM model (docs/memory.md) its map reads go through its cache: the height
+// field (4 bytes a texel), the distance map (4 bytes a voxel, slice after slice) or the
+// cone map (8 bytes a cell: apex and ratio), each line once a pixel.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "shadetlm/core/parallax_map.hpp"
 #include "shadetlm/modules/common/number.hpp"
 #include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/memory/cache.hpp"
 
 namespace shadetlm::modules {
 
@@ -45,6 +51,32 @@ struct ParallaxTrace {
   int skips = 0;       // distance, cone: the iterations that skipped empty space (the rest tested cells)
   int cells = 0;       // of the iterations, the exact per-cell tests (distance, cone: the finish)
 };
+// The tracer's map reads under the DRAM model: where one material's maps lie, and the
+// lines a pixel touches (its line buffer), read through the cache at the pixel's end.
+class MapReads {
+ public:
+  struct Place {
+    Surface height, cone;
+    std::vector<Surface> slices;  // the distance map's
+  };
+  explicit MapReads(MemoryClient& memory) : memory_(memory) {}
+  // Places the maps of `m` (method: distance, cone or neither) one after another.
+  Place place(const ParallaxMaps& m, bool distance, bool cone);
+  void begin(const Place& place) { place_ = &place, count_ = 0; }
+  void bilinear(float x, float y);    // the four texels of core::bilinear_height
+  void cell(int i, int j);            // the four corners of core::cell_hit's cell
+  void voxel(float x, float y, float z, const core::VolumeMap& v);  // as VolumeMap::sample
+  void cone(int i, int j);            // a cone map cell (i, j within the map)
+  uint16_t end();                     // the DRAM lines the pixel moved
+
+ private:
+  void texel(const Surface& s, int x, int y);  // wrapped
+  MemoryClient& memory_;
+  const Place* place_ = nullptr;
+  uint64_t lines_[256];
+  int count_ = 0;
+};
+
 // Below this distance to the relief (voxels), skipping stops and the exact cells finish.
 constexpr float kParallaxNear = 0.5f;
 
@@ -54,19 +86,25 @@ constexpr float kParallaxNear = 0.5f;
 // surface or leaving it), returns the entry point with 0 iterations. Adds the
 // operations done to `ops` if given.
 // `numbers`: the tracer's number format and event counters (nullptr: float32).
+// `reads`: the map reads under the DRAM model (nullptr: ideal memory).
 ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0, float y0, float a,
-                             float b, float c, Ops* ops = nullptr, NumberContext* numbers = nullptr);
+                             float b, float c, Ops* ops = nullptr, NumberContext* numbers = nullptr,
+                             MapReads* reads = nullptr);
 
 class ParallaxKernel {
  public:
   // The tracer runs in `format` (pipeline.parallax.format).
   // `cell_cycles`: the cycles of an exact cell test (one a step or read).
-  explicit ParallaxKernel(const core::Scene& scene, core::NumberFormat format = {}, int64_t cell_cycles = 1);
+  // `cache`: its cache under the DRAM model (none: ideal memory).
+  explicit ParallaxKernel(const core::Scene& scene, core::NumberFormat format = {}, int64_t cell_cycles = 1,
+                          std::optional<CacheConfig> cache = std::nullopt);
   static bool needed(const core::Scene& scene);
 
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
-  Work work(const SpanPacket&) const { return {work_, 0}; }  // an iteration a cycle, a cell test cell_cycles
+  // An iteration a cycle, a cell test cell_cycles; the DRAM lines of each pixel's map reads.
+  Work work(const SpanPacket&) const { return {work_, 0, memory_ ? lines_ : nullptr}; }
+  const MemoryClient* memory() const { return memory_.get(); }
   bool bypass(const SpanPacket& p) const { return p.tri->material->path != core::ShadingPath::Parallax; }
 
   double precompute_seconds() const { return precompute_s_; }
@@ -84,6 +122,10 @@ class ParallaxKernel {
  private:
   const core::Scene& scene_;
   std::vector<std::unique_ptr<ParallaxMaps>> maps_;  // by material index
+  std::unique_ptr<MemoryClient> memory_;             // none: ideal memory
+  std::unique_ptr<MapReads> reads_;
+  std::vector<MapReads::Place> places_;               // by material index
+  uint16_t lines_[kSpanMax] = {};
   uint64_t iterations_ = 0;
   uint16_t work_[kSpanMax];
   int64_t cell_cycles_ = 1;
