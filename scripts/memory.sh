@@ -4,7 +4,8 @@
 # 32 bytes a cycle):
 #  1. frame cycles, DRAM bytes per fetched pixel and hit rate against the texture
 #     unit's cache size (1 … 64 KiB): the bump fetch (bench-bump), the screen-space
-#     filters trilinear, anisotropic and EWA (bench-texture's texture-screen objects);
+#     filters trilinear, anisotropic and EWA (bench-texture's texture-screen objects)
+#     and texel_project (bench-texture's floor: its texel and accumulator caches);
 #  2. the three layouts at the default 16 KiB cache, for the bump fetch, the trilinear
 #     filter and the framebuffer's colour;
 #  3. the bump-mapping paper's cost claim with the texture unit and its memory counted:
@@ -44,7 +45,8 @@ print("## 1. Frame cycles (millions), DRAM bytes per fetched pixel and hit rate 
 paths = [("bump fetch", "bench-bump-1080p", "bump_fetch", []),
          ("trilinear", "bench-texture-1080p", "texture_fetch", ["pipeline.texture_fetch.filter=trilinear"]),
          ("anisotropic", "bench-texture-1080p", "texture_fetch", ["pipeline.texture_fetch.filter=anisotropic"]),
-         ("EWA", "bench-texture-1080p", "texture_fetch", ["pipeline.texture_fetch.filter=ewa"])]
+         ("EWA", "bench-texture-1080p", "texture_fetch", ["pipeline.texture_fetch.filter=ewa"]),
+         ("texel_project", "bench-texture-1080p", "texel_project", [])]
 print("| cache |" + "".join(f" {p[0]} |" for p in paths))
 print("|---:|" + "---|" * len(paths))
 ideal = {p[0]: render(p[1], *p[3])["frame_cycles"] for p in paths}

@@ -28,6 +28,20 @@ run unhidden "${dram[@]}" --set pipeline.bump_fetch.miss_queue=0 --set pipeline.
 run slow "${dram[@]}" --set pipeline.memory.latency=2000
 "$bin" render "$src/golden/bump-knot/scene.json" -o "$tmp/f.exr" --stats "$tmp/timeline-stats.json" \
   --timeline "$tmp/timeline.json" "${dram[@]}" --set pipeline.bump_fetch.cache.size=1024 >/dev/null
+# A texture-object material on a 1×1 texture (no mip levels), 64-bit accumulators in
+# lines of 16 bytes (each pixel's four numbers span two lines): rendered, counted.
+cat >"$tmp/tiny.json" <<'JSON'
+{"camera": {"position": [0,0,4], "target": [0,0,0], "resolution": [64,48]},
+ "lights": [{"type": "directional", "direction": [0,0,-1]}],
+ "textures": {"t": {"type": "checker", "size": [1, 1], "cells": 1}},
+ "materials": {"m": {"texture": "t", "path": "texture-object"}},
+ "objects": [{"shape": "plane", "size": [3, 3], "material": "m"}]}
+JSON
+for bits in 32 64; do
+  "$bin" render "$tmp/tiny.json" -o "$tmp/f.exr" --stats "$tmp/tiny$bits.json" "${dram[@]}" \
+    --set pipeline.texel_project.cache.line=16 --set pipeline.texel_project.accumulator_bits=$bits >/dev/null 2>"$tmp/err" ||
+    { echo "FAIL a 1x1 texture-object texture under the DRAM model:"; cat "$tmp/err"; exit 1; }
+done
 
 python3 - "$tmp" <<'PY'
 import json, sys
@@ -57,6 +71,11 @@ moved = sum((m["misses"] + m["writebacks"] - m["writebacks_at_end"]) * m["cache"
             for b in stats["blocks"].values() if (m := b.get("memory")))
 checks.append((f"the timeline's DRAM counter holds the bytes the caches moved ({counted:.0f} of {moved})",
                moved > 0 and abs(counted - moved) < 1e-6 * moved))
+# 64-bit accumulators: 32 bytes a pixel, two 16-byte lines; 32-bit ones: 16 bytes, one.
+acc = {b: json.load(open(f"{d}/tiny{b}.json"))["blocks"]["texel_project"]["details"]["accumulator_dram_bytes"]
+       for b in (32, 64)}
+checks.append((f"64-bit accumulators move twice the bytes of 32-bit ones ({acc[64]} against {acc[32]})",
+               acc[32] > 0 and acc[64] == 2 * acc[32]))
 failed = 0
 for name, ok in checks:
     print(("ok " if ok else "FAIL ") + name)

@@ -26,9 +26,11 @@ std::vector<core::SettingSpec> PipelineDecl::all_settings() const {
                        b.fifo == BlockDecl::Fifo::Triangles ? "triangles its input FIFO holds"
                                                              : "pixels its input FIFO holds"});
       if (b.memory) {
-        all.push_back({b.name + ".cache.size", 16384, {}, 1, 1 << 30, "bytes of its cache (a power of two)"});
-        all.push_back({b.name + ".cache.line", 64, {}, 1, 1 << 16, "bytes of its cache's line (a power of two)"});
-        all.push_back({b.name + ".cache.ways", 4, {}, 1, 1 << 16, "its cache's associativity (dividing its lines)"});
+        // At most 16 MiB, 2^20 lines and 64 ways: a cache of silicon, and a model that
+        // fits in memory and looks up a line in a few steps.
+        all.push_back({b.name + ".cache.size", 16384, {}, 16, 1 << 24, "bytes of its cache (a power of two)"});
+        all.push_back({b.name + ".cache.line", 64, {}, 16, 4096, "bytes of its cache's line (a power of two)"});
+        all.push_back({b.name + ".cache.ways", 4, {}, 1, 64, "its cache's associativity (dividing its lines)"});
         all.push_back({b.name + ".cache.layout", "tiled", layout_names(), 0, 0,
                        "how its surfaces lie in memory: linear, tiled (a line a tile) or morton"});
         if (b.fifo != BlockDecl::Fifo::None)  // (a frame pass is timed as a whole)

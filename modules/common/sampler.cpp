@@ -65,9 +65,7 @@ void Sampler::touch(int level, int x, int y) {
       memory_ ? address(memory_->layout(), map_->surfaces[size_t(level)], memory_->line_bytes(), x, y) /
                     memory_->line_bytes()
               : (uint64_t(level) << 48) | (uint64_t(uint32_t(y) >> 2) << 24) | uint64_t(uint32_t(x) >> 2);
-  for (int k = 0; k < line_count_; ++k)
-    if (lines_[k] == line) return;
-  if (line_count_ < int(std::size(lines_))) lines_[line_count_++] = line;
+  lines_.add(line);
 }
 
 void Sampler::nearest(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops) {
@@ -178,7 +176,7 @@ void Sampler::ewa(const MipMap& map, float u, float v, float ax, float ay, float
 
 void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx, float dudy, float dvdy,
                      float out[3], Ops& ops) {
-  line_count_ = 0;
+  lines_.clear();
   map_ = &map;
   const uint64_t fetches_before = ops.fetch;
   const core::Texture& base = *map.levels.front();
@@ -228,9 +226,9 @@ void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx
       else nearest(*map.levels[size_t(level)], level, u, v, out, ops);
     }
   }
-  ops.line += uint64_t(line_count_);
+  ops.line += uint64_t(lines_.lines().size());
   if (memory_)
-    for (int k = 0; k < line_count_; ++k) memory_->read_line(lines_[k]);
+    for (uint64_t line : lines_.lines()) memory_->read_line(line);
   cycles_ += std::max<uint64_t>(1, (ops.fetch - fetches_before + 3) / 4);
 }
 

@@ -86,8 +86,7 @@ class Sampler {
   float lod_ = 0;
   MemoryClient* memory_ = nullptr;
   const MipMap* map_ = nullptr;  // of the current sample
-  uint64_t lines_[256];  // the lines touched by the current pixel
-  int line_count_ = 0;
+  LineBuffer lines_;  // the lines touched by the current pixel
   uint64_t cycles_ = 0;
 };
 

@@ -137,6 +137,17 @@ uint64_t Cache::dirty_lines() const {
   return n;
 }
 
+void LineBuffer::add(uint64_t line) {
+  constexpr size_t kScanned = 32;  // up to here a scan is quicker than keeping them sorted
+  if (lines_.size() < kScanned) {
+    if (std::find(lines_.begin(), lines_.end(), line) != lines_.end()) return;
+    lines_.push_back(line);
+    if (lines_.size() == kScanned) seen_.insert(lines_.begin(), lines_.end());
+    return;
+  }
+  if (seen_.insert(line).second) lines_.push_back(line);
+}
+
 Surface MemoryClient::place(int width, int height, uint32_t element_bytes) {
   Surface s{next_, width, height, element_bytes};
   next_ += surface_bytes(layout(), s, line_bytes());

@@ -8,8 +8,10 @@
 // The cache is a client's alone and the client is in order, so which access hits does
 // not depend on time: the kernels run it as they fetch, and hand the timing the DRAM
 // lines each pixel moved.
+#include <algorithm>
 #include <cstdint>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 namespace shadetlm::modules {
@@ -72,6 +74,19 @@ class Cache {
   Counts counts_;
 };
 
+// The lines a pixel touches, each once (a texture unit's line buffer), in the order
+// first touched.
+class LineBuffer {
+ public:
+  void clear() { lines_.clear(), seen_.clear(); }
+  void add(uint64_t line);
+  const std::vector<uint64_t>& lines() const { return lines_; }
+
+ private:
+  std::vector<uint64_t> lines_;
+  std::unordered_set<uint64_t> seen_;  // past 32 lines: a set, for many (a long ray, a wide footprint)
+};
+
 // A block's port to memory: its cache, its surfaces placed one after another from
 // address 0, and the DRAM lines the current pixel moved.
 class MemoryClient {
@@ -79,8 +94,12 @@ class MemoryClient {
   explicit MemoryClient(const CacheConfig& config) : cache_(config) {}
   // Places a surface of `width` × `height` elements of `element_bytes` after the last one.
   Surface place(int width, int height, uint32_t element_bytes);
+  // Reads (or writes) element (x, y) of `s`: every line it spans.
   void access(const Surface& s, int x, int y, bool write) {
-    pixel_lines_ += cache_.access(address(cache_.config().layout, s, cache_.config().line, x, y), write);
+    const uint64_t first = address(cache_.config().layout, s, cache_.config().line, x, y);
+    const uint64_t line = cache_.config().line;
+    for (uint64_t l = first / line; l <= (first + s.element_bytes - 1) / line; ++l)
+      pixel_lines_ += cache_.access(l * line, write);
   }
   // Reads the line holding `address` (a line the caller found for itself).
   void read_line(uint64_t line) { pixel_lines_ += cache_.access(line * cache_.config().line, false); }

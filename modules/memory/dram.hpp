@@ -9,8 +9,11 @@
 // Oldest-first means a request never waits for a younger one: the fast model places
 // requests in its pixel-major order (that order) on a calendar of the bytes each cycle
 // has left, each taking what the older ones left — which is what the clocked reference's
-// arbiter, deciding cycle by cycle, gives it.
+// arbiter, deciding cycle by cycle, gives it. The calendar keeps runs of full cycles and
+// the cycles taken in part, so that a long request (a wide line at a byte a cycle) costs
+// a few steps, not one a cycle.
 #include <cstdint>
+#include <map>
 #include <vector>
 
 namespace shadetlm::modules {
@@ -34,11 +37,12 @@ class Dram {
   const std::vector<uint64_t>& bytes_per_bin() const { return per_bin_; }
 
  private:
-  uint32_t& at(int64_t cycle);  // the bytes taken in `cycle` (≥ base_), the calendar grown to hold it
+  void fill(int64_t from, int64_t to);           // cycles [from, to) taken in full
+  void count(int64_t cycle, uint64_t bytes, int64_t cycles = 1);  // the histogram
   DramTiming timing_;
-  std::vector<uint32_t> taken_;  // a ring: the bytes taken in cycles base_ … base_ + size − 1
-  int64_t base_ = 0;
-  uint64_t mask_ = 0;
+  std::map<int64_t, int64_t> full_;     // runs of full cycles: first → one past the last (apart, not adjacent)
+  std::map<int64_t, uint64_t> part_;    // cycles taken in part: cycle → bytes taken
+  int64_t base_ = 0;                    // no request is made before it
   uint64_t bytes_ = 0;
   uint64_t bin_cycles_ = 0;
   std::vector<uint64_t> per_bin_;

@@ -295,10 +295,7 @@ void MapReads::texel(const Surface& s, int x, int y) {
   x %= s.width, y %= s.height;
   if (x < 0) x += s.width;
   if (y < 0) y += s.height;
-  const uint64_t line = address(memory_.layout(), s, memory_.line_bytes(), x, y) / memory_.line_bytes();
-  for (int k = 0; k < count_; ++k)
-    if (lines_[k] == line) return;
-  if (count_ < int(std::size(lines_))) lines_[count_++] = line;
+  lines_.add(address(memory_.layout(), s, memory_.line_bytes(), x, y) / memory_.line_bytes());
 }
 
 void MapReads::bilinear(float x, float y) {
@@ -325,8 +322,8 @@ void MapReads::cone(int i, int j) {
 }
 
 uint16_t MapReads::end() {
-  for (int k = 0; k < count_; ++k) memory_.read_line(lines_[k]);
-  count_ = 0;
+  for (uint64_t line : lines_.lines()) memory_.read_line(line);
+  lines_.clear();
   return memory_.take_pixel_lines();
 }
 

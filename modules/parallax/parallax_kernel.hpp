@@ -62,7 +62,7 @@ class MapReads {
   explicit MapReads(MemoryClient& memory) : memory_(memory) {}
   // Places the maps of `m` (method: distance, cone or neither) one after another.
   Place place(const ParallaxMaps& m, bool distance, bool cone);
-  void begin(const Place& place) { place_ = &place, count_ = 0; }
+  void begin(const Place& place) { place_ = &place, lines_.clear(); }
   void bilinear(float x, float y);    // the four texels of core::bilinear_height
   void cell(int i, int j);            // the four corners of core::cell_hit's cell
   void voxel(float x, float y, float z, const core::VolumeMap& v);  // as VolumeMap::sample
@@ -73,8 +73,7 @@ class MapReads {
   void texel(const Surface& s, int x, int y);  // wrapped
   MemoryClient& memory_;
   const Place* place_ = nullptr;
-  uint64_t lines_[256];
-  int count_ = 0;
+  LineBuffer lines_;
 };
 
 // Below this distance to the relief (voxels), skipping stops and the exact cells finish.

@@ -50,13 +50,18 @@ TexelProjectKernel::TexelProjectKernel(const core::Scene& scene, int units, core
     memory_settings_ = memory;
     texel_memory_ = std::make_unique<MemoryClient>(memory->cache);
     accumulators_ = std::make_unique<MemoryClient>(memory->cache);
-    for (size_t k = 0; k < mips_.size(); ++k) {
-      if (mips_[k].empty()) continue;
-      surfaces_[&scene.textures[k]] = texel_memory_->place(scene.textures[k].width, scene.textures[k].height, 4);
-      for (const auto& l : mips_[k]) surfaces_[&l] = texel_memory_->place(l.width, l.height, 4);
+    for (const auto& o : scene.objects) {  // each texture-object texture once (a 1×1 one has no mips)
+      const core::Material& m = scene.materials[size_t(o.material)];
+      const core::Texture& base = scene.textures[size_t(m.texture)];
+      if (m.path != core::ShadingPath::TextureObject || surfaces_.count(&base)) continue;
+      surfaces_[&base] = texel_memory_->place(base.width, base.height, 4);
+      for (const auto& l : mips_[size_t(m.texture)]) surfaces_[&l] = texel_memory_->place(l.width, l.height, 4);
     }
-    accumulator_surface_ =
-        accumulators_->place(scene.camera.width, scene.camera.height, uint32_t((4 * memory->accumulator_bits + 7) / 8));
+    // A pixel's four numbers, padded to a power of two bytes as a memory would store them
+    // (64-bit ones span two lines of 16 bytes: MemoryClient::access reads both).
+    uint32_t bytes = 1;
+    while (bytes < uint32_t((4 * memory->accumulator_bits + 7) / 8)) bytes *= 2;
+    accumulator_surface_ = accumulators_->place(scene.camera.width, scene.camera.height, bytes);
   }
 }
 
@@ -176,7 +181,15 @@ void TexelProjectKernel::splat_triangle(const glm::dvec3 P[3], const glm::dvec2 
 // every pixel it is seen at.
 void TexelProjectKernel::splat_constant(const Splat& s, const core::ClipPolygon& visible_part) {
   const int width = scene_.camera.width, height = scene_.camera.height;
-  const glm::vec4 c = s.texture->bilinear((s.uv[0] + s.uv[1] + s.uv[2]) / 3.0);
+  const glm::dvec2 centre = (s.uv[0] + s.uv[1] + s.uv[2]) / 3.0;
+  const glm::vec4 c = s.texture->bilinear(centre);
+  if (texel_memory_) {  // one texel's line for the whole triangle (its four texels share it, or nearly)
+    const core::Texture& t = *s.texture;
+    const double fx = std::floor(centre.x * t.width), fy = std::floor((1 - centre.y) * t.height);
+    if (std::isfinite(fx) && std::isfinite(fy))
+      texel_memory_->access(surfaces_.at(s.texture), int(std::fmod(std::fmod(fx, t.width) + t.width, t.width)),
+                            int(std::fmod(std::fmod(fy, t.height) + t.height, t.height)), false);
+  }
   glm::dvec2 lo(width, height), hi(0, 0);
   for (const auto& vertex : visible_part) {
     const glm::dvec3 sp = core::to_screen(vertex.clip, width, height);
