@@ -61,11 +61,17 @@ void place(MipMap& map, MemoryClient& memory) {
 }
 
 void Sampler::touch(int level, int x, int y) {
-  const uint64_t line =
-      memory_ ? address(memory_->layout(), map_->surfaces[size_t(level)], memory_->line_bytes(), x, y) /
-                    memory_->line_bytes()
-              : (uint64_t(level) << 48) | (uint64_t(uint32_t(y) >> 2) << 24) | uint64_t(uint32_t(x) >> 2);
-  lines_.add(line);
+  if (memory_) return touch_memory(level, x, y);
+  lines_.add((uint64_t(level) << 48) | (uint64_t(uint32_t(y) >> 2) << 24) | uint64_t(uint32_t(x) >> 2));
+}
+
+void Sampler::read_lines() {
+  lines_.for_each([&](uint64_t line) { memory_->read_line(line); });
+}
+
+void Sampler::touch_memory(int level, int x, int y) {
+  const uint32_t line = memory_->line_bytes();
+  lines_.add(address(memory_->layout(), map_->surfaces[size_t(level)], line, x, y) / line);
 }
 
 void Sampler::nearest(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops) {
@@ -226,9 +232,8 @@ void Sampler::sample(const MipMap& map, float u, float v, float dudx, float dvdx
       else nearest(*map.levels[size_t(level)], level, u, v, out, ops);
     }
   }
-  ops.line += uint64_t(lines_.lines().size());
-  if (memory_)
-    for (uint64_t line : lines_.lines()) memory_->read_line(line);
+  ops.line += uint64_t(lines_.size());
+  if (memory_) read_lines();
   cycles_ += std::max<uint64_t>(1, (ops.fetch - fetches_before + 3) / 4);
 }
 

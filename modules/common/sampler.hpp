@@ -80,6 +80,8 @@ class Sampler {
   void trilinear(const MipMap& map, float lod, float u, float v, float out[3], Ops& ops);
   void ewa(const MipMap& map, float u, float v, float ax, float ay, float bx, float by, float out[3], Ops& ops);
   void touch(int level, int x, int y);
+  [[gnu::noinline]] void touch_memory(int level, int x, int y);  // the line of the unit's layout (DRAM model)
+  [[gnu::noinline]] void read_lines();  // the pixel's lines through the cache (DRAM model)
 
   Filter filter_;
   int probes_;

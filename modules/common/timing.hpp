@@ -138,10 +138,11 @@ class PixelLine {
   // The raster: triangle `arrival` was handed on by setup at that cycle; the walk goes
   // on through `steps` hidden pixels, of which `misses` moved DRAM lines (in order).
   int64_t start_triangle(int64_t arrival);
-  void walk_hidden(uint64_t steps, const std::vector<StepLines>& misses = {});
+  void walk_hidden(uint64_t steps, const std::vector<StepLines>& misses = kNoMisses);
   // Times the pixels of packet `p` once every block has seen it; `hidden_before`: the
   // steps walked before its first pixel. Then tells the observers and the log.
-  void sweep(const SpanPacket& p, uint64_t hidden_before, const std::vector<StepLines>& misses = {});
+  void sweep(const SpanPacket& p, uint64_t hidden_before, const std::vector<StepLines>& misses = kNoMisses);
+  static inline const std::vector<StepLines> kNoMisses{};
   // At the pass's end: the span blocks' starved cycles (from their busy and blocked ones).
   void settle();
   void watch(TimedObserver* o) { observers_.push_back(o), keep_times = true; }

@@ -45,6 +45,13 @@ uint32_t copy_counting_nonfinite(float* __restrict dst, const float* __restrict 
 
 }  // namespace
 
+void FramebufferKernel::write_colour(const SpanPacket& p) {
+  for (int i = 0; i < p.count; ++i) {
+    memory_->access(colour_, p.x0 + i, p.y, true);
+    lines_[i] = memory_->take_pixel_lines();
+  }
+}
+
 void FramebufferKernel::process(SpanPacket& p) {
   const size_t base = size_t(p.y) * frame_.width + p.x0;
   const int n = p.count;
@@ -75,11 +82,7 @@ void FramebufferKernel::process(SpanPacket& p) {
         for (int i = 0; i < n; ++i)
           if (!std::isfinite(p.spec[c][i])) p.spec[c][i] = 0.0f;
   }
-  if (memory_)
-    for (int i = 0; i < n; ++i) {
-      memory_->access(colour_, p.x0 + i, p.y, true);
-      lines_[i] = memory_->take_pixel_lines();
-    }
+  if (memory_) write_colour(p);
   if (visible_.empty()) return;
   for (int i = 0; i < p.count; ++i) {
     const size_t at = base + i;

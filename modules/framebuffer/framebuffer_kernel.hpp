@@ -61,6 +61,7 @@ class FramebufferKernel {
   std::unique_ptr<MemoryClient> memory_;  // none: ideal memory
   Surface colour_;
   uint16_t lines_[kSpanMax] = {};
+  [[gnu::noinline]] void write_colour(const SpanPacket& p);  // through the cache (the DRAM model)
 };
 
 }  // namespace shadetlm::modules

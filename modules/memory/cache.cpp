@@ -137,15 +137,10 @@ uint64_t Cache::dirty_lines() const {
   return n;
 }
 
-void LineBuffer::add(uint64_t line) {
-  constexpr size_t kScanned = 32;  // up to here a scan is quicker than keeping them sorted
-  if (lines_.size() < kScanned) {
-    if (std::find(lines_.begin(), lines_.end(), line) != lines_.end()) return;
-    lines_.push_back(line);
-    if (lines_.size() == kScanned) seen_.insert(lines_.begin(), lines_.end());
-    return;
-  }
-  if (seen_.insert(line).second) lines_.push_back(line);
+void LineBuffer::clear_more() { seen_.clear(), more_.clear(); }
+
+void LineBuffer::add_many(uint64_t line) {
+  if (seen_.insert(line).second) more_.push_back(line);
 }
 
 Surface MemoryClient::place(int width, int height, uint32_t element_bytes) {

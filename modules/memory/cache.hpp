@@ -78,13 +78,30 @@ class Cache {
 // first touched.
 class LineBuffer {
  public:
-  void clear() { lines_.clear(), seen_.clear(); }
-  void add(uint64_t line);
-  const std::vector<uint64_t>& lines() const { return lines_; }
+  void clear() {
+    if (count_ == kScanned) clear_more();
+    count_ = 0;
+  }
+  void add(uint64_t line) {  // inline: a texture unit adds every texel's line
+    for (int k = 0; k < count_; ++k)
+      if (first_[k] == line) return;
+    if (count_ < kScanned) first_[count_++] = line;
+    else add_many(line);
+  }
+  size_t size() const { return size_t(count_) + more_.size(); }
+  template <class F> void for_each(F&& f) const {
+    for (int k = 0; k < count_; ++k) f(first_[k]);
+    for (uint64_t line : more_) f(line);
+  }
 
  private:
-  std::vector<uint64_t> lines_;
-  std::unordered_set<uint64_t> seen_;  // past 32 lines: a set, for many (a long ray, a wide footprint)
+  static constexpr int kScanned = 256;  // up to here a scan (an EWA footprint's lines, nearly always)
+  [[gnu::noinline]] void add_many(uint64_t line);  // past the first kScanned
+  [[gnu::noinline]] void clear_more();
+  uint64_t first_[kScanned];
+  int count_ = 0;
+  std::vector<uint64_t> more_;         // the lines past the first kScanned (a long ray, a very wide footprint)
+  std::unordered_set<uint64_t> seen_;  // the same, as a set
 };
 
 // A block's port to memory: its cache, its surfaces placed one after another from

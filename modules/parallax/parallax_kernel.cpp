@@ -322,7 +322,7 @@ void MapReads::cone(int i, int j) {
 }
 
 uint16_t MapReads::end() {
-  for (uint64_t line : lines_.lines()) memory_.read_line(line);
+  lines_.for_each([&](uint64_t line) { memory_.read_line(line); });
   lines_.clear();
   return memory_.take_pixel_lines();
 }

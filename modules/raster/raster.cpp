@@ -54,14 +54,17 @@ void Raster::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time& dela
     out->b_transport(span_, d);
     // The walk's steps before the packet's first pixel, hidden ones included.
     const uint64_t first = kernel_.row_walked_before() - walked_before + uint64_t(p.x0 - p.row_start);
-    if (line_) {
+    if (line_ && line_->dram()) {  // the depth buffer's traffic: the packet's and the hidden pixels' before it
       line_->set_work(0, kernel_.work());
       line_->sweep(p, first - timed_steps, hidden_misses(timed_steps, first));
+    } else if (line_) {
+      line_->sweep(p, first - timed_steps);
     }
     timed_steps = first + uint64_t(p.count);
   });
   const uint64_t trailing = kernel_.pixels_walked() - walked_before - timed_steps;
-  if (line_) line_->walk_hidden(trailing, hidden_misses(timed_steps, timed_steps + trailing));
+  if (line_ && line_->dram()) line_->walk_hidden(trailing, hidden_misses(timed_steps, timed_steps + trailing));
+  else if (line_) line_->walk_hidden(trailing);
   kernel_.hidden_lines().clear();
   if (log) log->trailing(trailing);
   // Setup's back-pressure: the transaction returns the cycle the raster took it.
