@@ -8,9 +8,13 @@
 #     precompute when they are built — reported as precompute_s — or file output), for the
 #     pipeline and for the loop: on a smaller frame of the same scene, and on the
 #     leanest Phong configuration.
-# Usage: scripts/bench.sh [SCENE] [extra --set arguments ...]
+# Usage: scripts/bench.sh [--instructions-only] [SCENE] [extra --set arguments ...]
+#   --instructions-only: part 2 alone (about 10 minutes; with
+#   `--set pipeline.memory.model=dram`, the memory model's cost, docs/performance.md).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+only_instructions=0
+[[ ${1:-} == --instructions-only ]] && { only_instructions=1; shift; }
 "$root/scripts/setup.sh"
 command -v valgrind >/dev/null || { echo "bench.sh: valgrind is missing (scripts/setup.sh installs it)" >&2; exit 1; }
 "$root/scripts/build.sh" >/dev/null
@@ -20,6 +24,7 @@ shift || true
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
+if ((only_instructions == 0)); then
 echo "== wall time: SystemC / plain loop, 1920x1080, per path (goal <= 1.10) =="
 # Each ratio is measured in one process (loop, SystemC, loop: SystemC elaborates once a
 # process); one process can be disturbed by the machine (1.36 once, 1.24 another time,
@@ -38,6 +43,7 @@ if [[ $scene == "$root/scenes/bench-1080p.json" ]]; then
   wall "$root/scenes/bench-bump-1080p.json" "$@"
   wall "$root/scenes/bench-texture-1080p.json" "$@"
   wall "$root/scenes/bench-parallax-1080p.json" "$@"
+fi
 fi
 
 echo
@@ -73,6 +79,7 @@ count "golden/texture-screen at 960x720 (EWA)" "$root/golden/texture-screen/scen
 count "golden/texture-object at 960x720 (texel_project)" "$root/golden/texture-object/scene.json" "[960,720]"
 count "golden/parallax-steps at 960x720 (refined map)" "$root/golden/parallax-steps/scene.json" "[960,720]"
 
+((only_instructions)) && exit 0
 echo
 echo "== each block's share of the run time (callgrind, self costs by block, SystemC, benchmark scene at 480x270) =="
 valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.share" --toggle-collect="${render_fn[systemc]}" \

@@ -65,8 +65,7 @@ checks = [
 # (the lines dirty at the frame's end are written back after it).
 timeline = json.load(open(f"{d}/timeline.json"))["traceEvents"]
 stats = json.load(open(f"{d}/timeline-stats.json"))
-bin_cycles = stats["utilization_over_time"]["bin_cycles"]
-counted = sum(e["args"]["bytes_per_cycle"] * bin_cycles for e in timeline if e.get("name") == "DRAM bandwidth")
+counted = sum(e["args"]["bytes_per_cycle"] * e["args"]["cycles"] for e in timeline if e.get("name") == "DRAM bandwidth")
 moved = sum((m["misses"] + m["writebacks"] - m["writebacks_at_end"]) * m["cache"]["line"]
             for b in stats["blocks"].values() if (m := b.get("memory")))
 checks.append((f"the timeline's DRAM counter holds the bytes the caches moved ({counted:.0f} of {moved})",

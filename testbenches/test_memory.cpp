@@ -91,7 +91,8 @@ TEST_CASE("Layouts: every element its own address inside its surface, a line a t
     for (const auto& [w, h, bytes, line] : {std::tuple{13, 7, 4u, 64u}, std::tuple{16, 16, 8u, 64u},
                                             std::tuple{5, 9, 4u, 16u}, std::tuple{3, 2, 16u, 8u}}) {
       INFO(modules::layout_names()[size_t(layout)] << " " << w << "×" << h << ", " << bytes << " B, lines of " << line);
-      const modules::Surface s{4096, w, h, bytes};
+      modules::Surface s{4096, w, h, bytes};
+      modules::tile_for(s, line);
       const uint64_t size = modules::surface_bytes(layout, s, line);
       CHECK(size % line == 0);
       std::set<uint64_t> seen;
@@ -105,7 +106,8 @@ TEST_CASE("Layouts: every element its own address inside its surface, a line a t
         }
     }
   // Tiled, 4-byte texels in 64-byte lines: 4×4 tiles; linear: a row is contiguous.
-  const modules::Surface s{0, 64, 64, 4};
+  modules::Surface s{0, 64, 64, 4};
+  modules::tile_for(s, 64);
   auto line_of = [&](Layout l, int x, int y) { return modules::address(l, s, 64, x, y) / 64; };
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) CHECK(line_of(Layout::Tiled, x, y) == line_of(Layout::Tiled, 0, 0));
@@ -117,6 +119,7 @@ TEST_CASE("Layouts: every element its own address inside its surface, a line a t
   CHECK(modules::address(Layout::Morton, s, 64, 1, 0) == 4);
   CHECK(modules::address(Layout::Morton, s, 64, 0, 1) == 8);
   CHECK(modules::address(Layout::Morton, s, 64, 3, 3) == 15 * 4);
+  CHECK(modules::address(Layout::Morton, s, 64, 63, 0) == 0x555 * 4);  // 0b111111 spread
 }
 
 TEST_CASE("Dram: oldest first, each request taking what the older ones left, worked by hand", "[memory]") {

@@ -80,14 +80,19 @@ nlohmann::json RenderResult::stats_json() const {
   nlohmann::json memory = {{"model", dram ? "dram" : "ideal"}};
   if (dram) {
     uint64_t bytes = 0;
-    nlohmann::json by_client = nlohmann::json::object();
-    for (const auto& b : blocks)
-      if (b.stats.memory) bytes += b.stats.memory->dram_bytes(), by_client[b.name] = b.stats.memory->dram_bytes();
+    nlohmann::json by_client = nlohmann::json::object(), per_pixel_by_client = nlohmann::json::object();
     const double shaded = double(std::max<uint64_t>(pixels_shaded, 1));
+    for (const auto& b : blocks)
+      if (b.stats.memory) {
+        bytes += b.stats.memory->dram_bytes();
+        by_client[b.name] = b.stats.memory->dram_bytes();
+        per_pixel_by_client[b.name] = double(b.stats.memory->dram_bytes()) / shaded;
+      }
     memory["latency"] = dram->latency, memory["bytes_per_cycle"] = dram->bytes_per_cycle;
     memory["dram_bytes"] = bytes;
     memory["dram_bytes_per_shaded_pixel"] = double(bytes) / shaded;
     memory["dram_bytes_by_client"] = by_client;
+    memory["dram_bytes_per_shaded_pixel_by_client"] = per_pixel_by_client;
     memory["bandwidth_use"] = frame_cycles > 0 ? double(bytes) / (double(frame_cycles) * double(dram->bytes_per_cycle)) : 0.0;
   }
   j["memory"] = memory;

@@ -1,5 +1,6 @@
 #include "shadetlm/modules/common/timeline.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <stdexcept>
 
@@ -26,10 +27,12 @@ void Timeline::write(const std::string& path, const std::vector<std::string>& na
     for (const auto& c : counts_)
       out << ",\n{\"ph\": \"C\", \"pid\": 1, \"name\": \"" << names[c.block] << " FIFO\", \"ts\": "
           << double(c.cycle) / clock_mhz << ", \"args\": {\"pixels\": " << c.fifo << "}}";
-    for (size_t k = 0; k < dram_bytes_.size(); ++k)  // bytes a cycle over each bin
-      out << ",\n{\"ph\": \"C\", \"pid\": 1, \"name\": \"DRAM bandwidth\", \"ts\": "
-          << double(k * dram_bin_) / clock_mhz << ", \"args\": {\"bytes_per_cycle\": "
-          << double(dram_bytes_[k]) / double(dram_bin_) << "}}";
+    for (size_t k = 0; k < dram_bytes_.size(); ++k) {  // bytes a cycle over each bin (the last one's part)
+      const uint64_t from = k * dram_bin_, length = std::max<uint64_t>(std::min(dram_bin_, dram_end_ - std::min(dram_end_, from)), 1);
+      out << ",\n{\"ph\": \"C\", \"pid\": 1, \"name\": \"DRAM bandwidth\", \"ts\": " << double(from) / clock_mhz
+          << ", \"args\": {\"bytes_per_cycle\": " << double(dram_bytes_[k]) / double(length) << ", \"cycles\": " << length
+          << "}}";
+    }
     out << "\n]}\n";
     if (!out) throw std::runtime_error(path + ": cannot write the timeline");
   });

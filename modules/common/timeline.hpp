@@ -26,9 +26,10 @@ class Timeline {
     slices_.push_back({block, start, busy, pixels, triangle, stalled});
   }
   void count(uint32_t block, uint64_t cycle, uint32_t fifo) { counts_.push_back({block, cycle, fifo}); }
-  // The DRAM's bytes per bin of `bin_cycles` (docs/memory.md): a counter of its own.
-  void set_dram(uint64_t bin_cycles, std::vector<uint64_t> bytes_per_bin) {
-    dram_bin_ = bin_cycles, dram_bytes_ = std::move(bytes_per_bin);
+  // The DRAM's bytes per bin of `bin_cycles` up to cycle `end` (docs/memory.md): a
+  // counter of its own.
+  void set_dram(uint64_t bin_cycles, std::vector<uint64_t> bytes_per_bin, uint64_t end) {
+    dram_bin_ = bin_cycles, dram_bytes_ = std::move(bytes_per_bin), dram_end_ = end;
   }
   const std::vector<Slice>& slices() const { return slices_; }
   // Writes the JSON (through a temporary and a rename); times in µs at `clock_mhz`.
@@ -37,7 +38,7 @@ class Timeline {
  private:
   std::vector<Slice> slices_;
   std::vector<Count> counts_;
-  uint64_t dram_bin_ = 0;
+  uint64_t dram_bin_ = 0, dram_end_ = 0;
   std::vector<uint64_t> dram_bytes_;
 };
 

@@ -34,12 +34,18 @@ Tile tile_of(uint32_t line_bytes, uint32_t element_bytes) {
   return {(k + 1) / 2, k / 2};
 }
 
-// Bits of x in the even positions, of y in the odd ones.
-uint64_t interleave(uint32_t x, uint32_t y) {
-  uint64_t z = 0;
-  for (uint32_t b = 0; b < 32; ++b) z |= (uint64_t(x >> b & 1) << (2 * b)) | (uint64_t(y >> b & 1) << (2 * b + 1));
+// The bits of v spread to the even positions.
+uint64_t spread(uint32_t v) {
+  uint64_t z = v;
+  z = (z | (z << 16)) & 0x0000FFFF0000FFFFull;
+  z = (z | (z << 8)) & 0x00FF00FF00FF00FFull;
+  z = (z | (z << 4)) & 0x0F0F0F0F0F0F0F0Full;
+  z = (z | (z << 2)) & 0x3333333333333333ull;
+  z = (z | (z << 1)) & 0x5555555555555555ull;
   return z;
 }
+// Bits of x in the even positions, of y in the odd ones.
+uint64_t interleave(uint32_t x, uint32_t y) { return spread(x) | (spread(y) << 1); }
 
 uint64_t square_side(const Surface& s) {
   uint64_t side = 1;
@@ -49,17 +55,22 @@ uint64_t square_side(const Surface& s) {
 
 }  // namespace
 
-uint64_t address(Layout layout, const Surface& s, uint32_t line_bytes, int x, int y) {
+void tile_for(Surface& s, uint32_t line_bytes) {
+  const Tile t = tile_of(line_bytes, s.element_bytes);
+  s.tile_w_shift = t.w_shift, s.tile_h_shift = t.h_shift;
+  s.tile_bytes = std::max<uint64_t>(line_bytes, uint64_t(s.element_bytes) << (t.w_shift + t.h_shift));
+  s.tiles_per_row = (uint64_t(s.width) + (1u << t.w_shift) - 1) >> t.w_shift;
+}
+
+uint64_t address(Layout layout, const Surface& s, uint32_t /*line_bytes*/, int x, int y) {
   const uint64_t ux = uint32_t(x), uy = uint32_t(y), e = s.element_bytes;
   switch (layout) {
     case Layout::Linear:
       return s.base + (uy * uint64_t(s.width) + ux) * e;
     case Layout::Tiled: {
-      const Tile t = tile_of(line_bytes, s.element_bytes);
-      const uint64_t tiles_per_row = (uint64_t(s.width) + (1u << t.w_shift) - 1) >> t.w_shift;
-      const uint64_t tile = (uy >> t.h_shift) * tiles_per_row + (ux >> t.w_shift);
-      const uint64_t within = ((uy & ((1u << t.h_shift) - 1)) << t.w_shift) + (ux & ((1u << t.w_shift) - 1));
-      return s.base + tile * std::max<uint64_t>(line_bytes, e << (t.w_shift + t.h_shift)) + within * e;
+      const uint64_t tile = (uy >> s.tile_h_shift) * s.tiles_per_row + (ux >> s.tile_w_shift);
+      const uint64_t within = ((uy & ((1u << s.tile_h_shift) - 1)) << s.tile_w_shift) + (ux & ((1u << s.tile_w_shift) - 1));
+      return s.base + tile * s.tile_bytes + within * e;
     }
     case Layout::Morton:
       return s.base + interleave(uint32_t(x), uint32_t(y)) * e;
@@ -104,7 +115,8 @@ Cache::Cache(const CacheConfig& config) : config_(config) {
   const CacheFault fault = check(config);
   if (!fault.setting.empty()) throw std::invalid_argument("cache." + fault.setting + ": " + fault.why);
   line_shift_ = log2_of(config.line);
-  sets_ = config.size / config.line / config.ways;
+  sets_ = config.size / config.line / config.ways;  // a power of two: size and line are, ways divides
+  set_mask_ = sets_ - 1;
   tag_.assign(sets_ * config.ways, 0);
   used_.assign(tag_.size(), 0);
   dirty_.assign(tag_.size(), 0);
@@ -112,7 +124,7 @@ Cache::Cache(const CacheConfig& config) : config_(config) {
 
 uint32_t Cache::access(uint64_t address, bool write) {
   const uint64_t line = address >> line_shift_;
-  const uint64_t first = (line % sets_) * config_.ways;
+  const uint64_t first = (line & set_mask_) * config_.ways;
   ++counts_.accesses, ++clock_;
   size_t victim = first;
   for (size_t w = first; w < first + config_.ways; ++w) {
@@ -145,6 +157,7 @@ void LineBuffer::add_many(uint64_t line) {
 
 Surface MemoryClient::place(int width, int height, uint32_t element_bytes) {
   Surface s{next_, width, height, element_bytes};
+  tile_for(s, line_bytes());
   next_ += surface_bytes(layout(), s, line_bytes());
   return s;
 }

@@ -28,8 +28,15 @@ struct Surface {
   uint64_t base = 0;  // address of element (0, 0), line-aligned
   int width = 0, height = 0;
   uint32_t element_bytes = 4;
+  // Tiled: a tile's width and height as shifts, its bytes, the tiles a row (set by
+  // MemoryClient::place, or by tile_for()).
+  uint32_t tile_w_shift = 0, tile_h_shift = 0;
+  uint64_t tile_bytes = 0, tiles_per_row = 0;
 };
-// The address of element (x, y) of `s` (0 ≤ x < width, 0 ≤ y < height).
+// Fills in `s`'s tile for lines of `line_bytes`.
+void tile_for(Surface& s, uint32_t line_bytes);
+// The address of element (x, y) of `s` (0 ≤ x < width, 0 ≤ y < height); tiled, `s`'s
+// tile filled in (tile_for).
 uint64_t address(Layout layout, const Surface& s, uint32_t line_bytes, int x, int y);
 // The bytes `s` spans in `layout`, rounded up to whole lines.
 uint64_t surface_bytes(Layout layout, const Surface& s, uint32_t line_bytes);
@@ -66,7 +73,7 @@ class Cache {
  private:
   CacheConfig config_;
   uint32_t line_shift_ = 0;
-  uint64_t sets_ = 0;
+  uint64_t sets_ = 0, set_mask_ = 0;  // a power of two sets
   uint64_t clock_ = 0;               // accesses so far: the LRU stamp
   std::vector<uint64_t> tag_;        // per way of each set: the line + 1 (0: empty)
   std::vector<uint64_t> used_;       // per way: the stamp of its last access

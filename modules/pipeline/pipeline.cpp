@@ -266,7 +266,7 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
   }
   if (const Dram* dram = top.line().dram(); dram && !dram->bytes_per_bin().empty()) {
     const uint64_t bin = inspect.bin_cycles > 0 ? inspect.bin_cycles : Top::kTimelineDramBin;
-    top.timeline_slices().set_dram(bin, dram->bytes_per_bin());
+    top.timeline_slices().set_dram(bin, dram->bytes_per_bin(), r.frame_cycles);
     if (inspect.bin_cycles > 0) r.dram_bytes_per_bin = dram->bytes_per_bin();
   }
   if (!inspect.timeline.empty()) top.timeline_slices().write(inspect.timeline, top.names(), clock_mhz);

@@ -435,17 +435,25 @@ void TexelProjectKernel::splat(const Splat& s, T x, T y, const float colour[3]) 
   const int owner = (((px[0] + 4) >> 2) + ((py[0] + 4) >> 2)) % units_;
   ++unit_texels_[size_t(owner)];
   ++unit_round_robin_[size_t(texels_ % uint64_t(units_))];
+  unsigned taken = 0;  // the splats accumulated, a bit each (their memory, below)
   for (int k = 0; k < 4; ++k) {
     if (px[k] < 0 || py[k] < 0 || px[k] >= width || py[k] >= height || weight[k] <= 0) continue;
     const size_t at = size_t(py[k]) * size_t(width) + size_t(px[k]);
     if ((*s.visible)[at] != s.source + 1) continue;  // the depth test: another surface is seen here
     for (int c = 0; c < 3; ++c) accumulated_[at * 4 + size_t(c)] += double(weight[k] * colour[c]);
     accumulated_[at * 4 + 3] += double(weight[k]);
-    if (accumulators_) accumulators_->access(accumulator_surface_, px[k], py[k], true);
+    taken |= 1u << k;
     ++splats_;
     ops_ += kOpsPerAccumulation;
     if ((((px[k] + 4) >> 2) + ((py[k] + 4) >> 2)) % units_ != owner) ++cross_unit_splats_;
   }
+  if (accumulators_ && taken) accumulate_in_memory(px, py, taken);
+}
+
+// The accumulators' read-modify-writes of the splats taken, through their cache.
+void TexelProjectKernel::accumulate_in_memory(const int px[4], const int py[4], unsigned taken) {
+  for (int k = 0; k < 4; ++k)
+    if (taken >> k & 1) accumulators_->access(accumulator_surface_, px[k], py[k], true);
 }
 
 nlohmann::json TexelProjectKernel::details() const {
