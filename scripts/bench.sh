@@ -8,9 +8,10 @@
 #     precompute when they are built — reported as precompute_s — or file output), for the
 #     pipeline and for the loop: on a smaller frame of the same scene, and on the
 #     leanest Phong configuration.
-# Usage: scripts/bench.sh [--instructions-only] [SCENE] [extra --set arguments ...]
-#   --instructions-only: part 2 alone (about 10 minutes; with
-#   `--set pipeline.memory.model=dram`, the memory model's cost, docs/performance.md).
+# Usage: scripts/bench.sh [--instructions-only] [SCENE [extra --set arguments ...]]
+#   --instructions-only: part 2 alone (about 10 minutes). The memory model's cost
+#   (docs/performance.md): scripts/bench.sh --instructions-only "$PWD/scenes/bench-1080p.json"
+#   --set pipeline.memory.model=dram (the scene named in full: extra arguments follow a scene).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 only_instructions=0

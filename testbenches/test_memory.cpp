@@ -142,6 +142,29 @@ TEST_CASE("Dram: oldest first, each request taking what the older ones left, wor
   CHECK(dram.request(100, 4000) == 101 + 999 + 10);  // 1000 cycles of 4 bytes from 101: the calendar grows
 }
 
+TEST_CASE("Dram: the calendar of runs against one of every cycle, on random requests", "[memory]") {
+  std::mt19937 rng(11);
+  for (uint64_t per_cycle : {1u, 3u, 7u, 32u}) {
+    INFO(per_cycle << " bytes a cycle");
+    modules::Dram dram({5, per_cycle});
+    std::vector<uint64_t> taken(1 << 21, 0);  // the plain calendar: bytes taken per cycle (enough for every byte asked)
+    int64_t base = 0;
+    for (int k = 0; k < 3000; ++k) {
+      if (rng() % 50 == 0) base += int64_t(rng() % 40), dram.forget_before(base);  // time moves on
+      const int64_t made = base + int64_t(rng() % 60);
+      const uint64_t asked = 1 + rng() % (rng() % 8 == 0 ? 400 : 40);
+      uint64_t bytes = asked;
+      int64_t t = made + 1;
+      for (;; ++t) {  // oldest first: what the requests before left of each cycle
+        const uint64_t take = std::min(per_cycle - taken[size_t(t)], bytes);
+        taken[size_t(t)] += take, bytes -= take;
+        if (bytes == 0) break;
+      }
+      REQUIRE(dram.request(made, asked) == t + 5);  // the last byte's cycle, then the latency
+    }
+  }
+}
+
 TEST_CASE("DRAM model: the DRAM's bytes are the clients' lines, the same in both engines", "[memory]") {
   // (Cycles against cache size, bandwidth and miss queue: testbenches/memory_test.sh,
   // a process a configuration.)

@@ -52,8 +52,9 @@ TexelProjectKernel::TexelProjectKernel(const core::Scene& scene, int units, core
     accumulators_ = std::make_unique<MemoryClient>(memory->cache);
     for (const auto& o : scene.objects) {  // each texture-object texture once (a 1×1 one has no mips)
       const core::Material& m = scene.materials[size_t(o.material)];
+      if (m.path != core::ShadingPath::TextureObject) continue;  // (others may have no texture)
       const core::Texture& base = scene.textures[size_t(m.texture)];
-      if (m.path != core::ShadingPath::TextureObject || surfaces_.count(&base)) continue;
+      if (surfaces_.count(&base)) continue;
       surfaces_[&base] = texel_memory_->place(base.width, base.height, 4);
       for (const auto& l : mips_[size_t(m.texture)]) surfaces_[&l] = texel_memory_->place(l.width, l.height, 4);
     }
@@ -183,12 +184,15 @@ void TexelProjectKernel::splat_constant(const Splat& s, const core::ClipPolygon&
   const int width = scene_.camera.width, height = scene_.camera.height;
   const glm::dvec2 centre = (s.uv[0] + s.uv[1] + s.uv[2]) / 3.0;
   const glm::vec4 c = s.texture->bilinear(centre);
-  if (texel_memory_) {  // one texel's line for the whole triangle (its four texels share it, or nearly)
+  if (texel_memory_) {  // the line of the texel under the centre, for the whole triangle
     const core::Texture& t = *s.texture;
     const double fx = std::floor(centre.x * t.width), fy = std::floor((1 - centre.y) * t.height);
-    if (std::isfinite(fx) && std::isfinite(fy))
-      texel_memory_->access(surfaces_.at(s.texture), int(std::fmod(std::fmod(fx, t.width) + t.width, t.width)),
-                            int(std::fmod(std::fmod(fy, t.height) + t.height, t.height)), false);
+    if (std::isfinite(fx) && std::isfinite(fy)) {
+      const bool repeat = t.wrap == core::Wrap::Repeat;
+      const double x = repeat ? fx - t.width * std::floor(fx / t.width) : std::clamp(fx, 0.0, double(t.width - 1));
+      const double y = repeat ? fy - t.height * std::floor(fy / t.height) : std::clamp(fy, 0.0, double(t.height - 1));
+      texel_memory_->access(surfaces_.at(s.texture), std::min(int(x), t.width - 1), std::min(int(y), t.height - 1), false);
+    }
   }
   glm::dvec2 lo(width, height), hi(0, 0);
   for (const auto& vertex : visible_part) {
