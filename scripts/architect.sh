@@ -105,18 +105,5 @@ report | tee "$out/architect.txt"
 if ((doc)); then
   # Each table of the output between <!-- architect:N --> and <!-- /architect:N -->.
   cp "$out/fifo-depth.png" "$out/normalize-units.png" "$root/docs/images/"
-  python3 - "$out/architect.txt" "$root/docs/architect.md" <<'PY'
-import re, sys
-text, doc = open(sys.argv[1]).read(), sys.argv[2]
-tables = [t.strip() for t in re.findall(r"((?:^\|.*\n)+)", text, re.M)]
-page = open(doc).read()
-if len(tables) != 3:
-    sys.exit(f"architect.sh: {len(tables)} tables printed, 3 expected; {doc} left as it was")
-for n, table in enumerate(tables, 1):
-    page, found = re.subn(rf"(<!-- architect:{n} -->\n).*?(\n<!-- /architect:{n} -->)",
-                          lambda m: m.group(1) + table + m.group(2), page, flags=re.S)
-    if found != 1:
-        sys.exit(f"architect.sh: {doc} lacks the markers of table {n}; left as it was")
-open(doc, "w").write(page)
-PY
+  python3 "$root/scripts/doc-tables.py" "$out/architect.txt" "$root/docs/architect.md" architect 3
 fi

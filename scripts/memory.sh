@@ -122,18 +122,5 @@ for name, path, sets in configs:
     print(row)
 PY
 if ((doc)); then
-  python3 - "$out/memory.txt" "$root/docs/memory.md" <<'PY'
-import re, sys
-text, doc = open(sys.argv[1]).read(), sys.argv[2]
-tables = [t.strip() for t in re.findall(r"((?:^\|.*\n)+)", text, re.M)]
-page = open(doc).read()
-if len(tables) != 4:
-    sys.exit(f"memory.sh: {len(tables)} tables printed, 4 expected; {doc} left as it was")
-for n, table in enumerate(tables, 1):
-    page, found = re.subn(rf"(<!-- memory:{n} -->\n).*?(\n<!-- /memory:{n} -->)",
-                          lambda m: m.group(1) + table + m.group(2), page, flags=re.S)
-    if found != 1:
-        sys.exit(f"memory.sh: {doc} lacks the markers of table {n}; left as it was")
-open(doc, "w").write(page)
-PY
+  python3 "$root/scripts/doc-tables.py" "$out/memory.txt" "$root/docs/memory.md" memory 4
 fi

@@ -1,0 +1,19 @@
+#!/usr/bin/env python3
+"""Puts the Markdown tables a report script printed into its doc, table N between
+<!-- NAME:N --> and <!-- /NAME:N --> (scripts/architect.sh, scripts/memory.sh --doc).
+Leaves the doc as it was, and exits 1 naming why, if the count or a marker is wrong.
+Usage: scripts/doc-tables.py REPORT.txt DOC.md NAME COUNT"""
+import re
+import sys
+
+report, doc, name, count = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
+tables = [t.strip() for t in re.findall(r"((?:^\|.*\n)+)", open(report).read(), re.M)]
+page = open(doc).read()
+if len(tables) != count:
+    sys.exit(f"{name}: {len(tables)} tables printed, {count} expected; {doc} left as it was")
+for n, table in enumerate(tables, 1):
+    page, found = re.subn(rf"(<!-- {name}:{n} -->\n).*?(<!-- /{name}:{n} -->)",
+                          lambda m: m.group(1) + table + "\n" + m.group(2), page, flags=re.S)
+    if found != 1:
+        sys.exit(f"{name}: {doc} lacks the markers of table {n}; left as it was")
+open(doc, "w").write(page)
