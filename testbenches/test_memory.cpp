@@ -98,7 +98,7 @@ TEST_CASE("Layouts: every element its own address inside its surface, a line a t
       std::set<uint64_t> seen;
       for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-          const uint64_t a = modules::address(layout, s, line, x, y);
+          const uint64_t a = modules::address(layout, s, x, y);
           CHECK(a >= s.base);
           CHECK(a + bytes <= s.base + size);
           CHECK(a % bytes == 0);
@@ -108,7 +108,7 @@ TEST_CASE("Layouts: every element its own address inside its surface, a line a t
   // Tiled, 4-byte texels in 64-byte lines: 4×4 tiles; linear: a row is contiguous.
   modules::Surface s{0, 64, 64, 4};
   modules::tile_for(s, 64);
-  auto line_of = [&](Layout l, int x, int y) { return modules::address(l, s, 64, x, y) / 64; };
+  auto line_of = [&](Layout l, int x, int y) { return modules::address(l, s, x, y) / 64; };
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) CHECK(line_of(Layout::Tiled, x, y) == line_of(Layout::Tiled, 0, 0));
   CHECK(line_of(Layout::Tiled, 4, 0) != line_of(Layout::Tiled, 0, 0));
@@ -116,10 +116,10 @@ TEST_CASE("Layouts: every element its own address inside its surface, a line a t
   CHECK(line_of(Layout::Linear, 15, 0) == line_of(Layout::Linear, 0, 0));
   CHECK(line_of(Layout::Linear, 0, 1) != line_of(Layout::Linear, 0, 0));
   // Morton: x in the even bits, y in the odd ones.
-  CHECK(modules::address(Layout::Morton, s, 64, 1, 0) == 4);
-  CHECK(modules::address(Layout::Morton, s, 64, 0, 1) == 8);
-  CHECK(modules::address(Layout::Morton, s, 64, 3, 3) == 15 * 4);
-  CHECK(modules::address(Layout::Morton, s, 64, 63, 0) == 0x555 * 4);  // 0b111111 spread
+  CHECK(modules::address(Layout::Morton, s, 1, 0) == 4);
+  CHECK(modules::address(Layout::Morton, s, 0, 1) == 8);
+  CHECK(modules::address(Layout::Morton, s, 3, 3) == 15 * 4);
+  CHECK(modules::address(Layout::Morton, s, 63, 0) == 0x555 * 4);  // 0b111111 spread
 }
 
 TEST_CASE("Dram: oldest first, each request taking what the older ones left, worked by hand", "[memory]") {

@@ -170,11 +170,7 @@ class SpanBlock : public KernelBlock<K, Stage<K>> {
     if constexpr (has_details<K>::value) b.details = kernel.details();
     if constexpr (has_precompute<K>::value) r.precompute_s += kernel.precompute_seconds();
     if constexpr (has_memory<K>::value) {
-      if (const MemoryClient* m = kernel.memory()) {
-        // What is dirty at the frame's end is written back then.
-        b.stats.memory = MemoryStats{m->cache().config(), m->cache().counts(), m->cache().dirty_lines(),
-                                     b.stats.memory_stall_cycles};
-      }
+      if (const MemoryClient* m = kernel.memory()) b.stats.memory = memory_stats(*m, b.stats.memory_stall_cycles);
     }
   }
 };

@@ -37,6 +37,11 @@ struct MemoryStats {
   uint64_t other_bytes = 0;   // through another cache of the block (texel_project's accumulators)
   uint64_t dram_bytes() const { return (counts.misses + counts.writebacks + flushed) * cache.line + other_bytes; }
 };
+// A client's figures from its port: what its cache counted, and what is dirty at the
+// frame's end (written back then); `stall_cycles` from the timing.
+inline MemoryStats memory_stats(const MemoryClient& m, uint64_t stall_cycles) {
+  return {m.cache().config(), m.cache().counts(), m.cache().dirty_lines(), stall_cycles};
+}
 
 struct BlockStats {
   uint64_t packets = 0, pixels = 0, busy_cycles = 0, bypassed = 0;

@@ -70,8 +70,7 @@ void Sampler::read_lines() {
 }
 
 void Sampler::touch_memory(int level, int x, int y) {
-  const uint32_t line = memory_->line_bytes();
-  lines_.add(address(memory_->layout(), map_->surfaces[size_t(level)], line, x, y) / line);
+  lines_.add(memory_->line_of(map_->surfaces[size_t(level)], x, y));
 }
 
 void Sampler::nearest(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops) {

@@ -62,7 +62,7 @@ void tile_for(Surface& s, uint32_t line_bytes) {
   s.tiles_per_row = (uint64_t(s.width) + (1u << t.w_shift) - 1) >> t.w_shift;
 }
 
-uint64_t address(Layout layout, const Surface& s, uint32_t /*line_bytes*/, int x, int y) {
+uint64_t address(Layout layout, const Surface& s, int x, int y) {
   const uint64_t ux = uint32_t(x), uy = uint32_t(y), e = s.element_bytes;
   switch (layout) {
     case Layout::Linear:

@@ -37,7 +37,7 @@ struct Surface {
 void tile_for(Surface& s, uint32_t line_bytes);
 // The address of element (x, y) of `s` (0 ≤ x < width, 0 ≤ y < height); tiled, `s`'s
 // tile filled in (tile_for).
-uint64_t address(Layout layout, const Surface& s, uint32_t line_bytes, int x, int y);
+uint64_t address(Layout layout, const Surface& s, int x, int y);
 // The bytes `s` spans in `layout`, rounded up to whole lines.
 uint64_t surface_bytes(Layout layout, const Surface& s, uint32_t line_bytes);
 
@@ -120,12 +120,16 @@ class MemoryClient {
   Surface place(int width, int height, uint32_t element_bytes);
   // Reads (or writes) element (x, y) of `s`: every line it spans.
   void access(const Surface& s, int x, int y, bool write) {
-    const uint64_t first = address(cache_.config().layout, s, cache_.config().line, x, y);
+    const uint64_t first = address(cache_.config().layout, s, x, y);
     const uint64_t line = cache_.config().line;
     for (uint64_t l = first / line; l <= (first + s.element_bytes - 1) / line; ++l)
       pixel_lines_ += cache_.access(l * line, write);
   }
-  // Reads the line holding `address` (a line the caller found for itself).
+  // The line holding element (x, y) of `s` (a texture unit gathers a pixel's, then reads them).
+  uint64_t line_of(const Surface& s, int x, int y) const {
+    return address(cache_.config().layout, s, x, y) / cache_.config().line;
+  }
+  // Reads line `line` (one line_of gave).
   void read_line(uint64_t line) { pixel_lines_ += cache_.access(line * cache_.config().line, false); }
   // The DRAM lines moved since the last call (the pixel's), at most 65535.
   uint16_t take_pixel_lines() {

@@ -295,7 +295,7 @@ void MapReads::texel(const Surface& s, int x, int y) {
   x %= s.width, y %= s.height;
   if (x < 0) x += s.width;
   if (y < 0) y += s.height;
-  lines_.add(address(memory_.layout(), s, memory_.line_bytes(), x, y) / memory_.line_bytes());
+  lines_.add(memory_.line_of(s, x, y));
 }
 
 void MapReads::bilinear(float x, float y) {

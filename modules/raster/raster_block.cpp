@@ -18,8 +18,7 @@ class RasterBlock : public KernelBlock<RasterKernel, Raster> {
     r.pixels_walked = kernel.pixels_walked();
     r.pixels_hidden = kernel.pixels_hidden();
     if (const MemoryClient* m = kernel.memory())
-      b.stats.memory = MemoryStats{m->cache().config(), m->cache().counts(), m->cache().dirty_lines(),
-                                   b.stats.memory_stall_cycles};
+      b.stats.memory = memory_stats(*m, b.stats.memory_stall_cycles);
   }
 };
 }  // namespace

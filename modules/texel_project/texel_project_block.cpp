@@ -17,7 +17,7 @@ class TexelProjectBlock : public KernelBlock<TexelProjectKernel, TexelProject> {
     b.details = kernel.details();
     b.numbers = kernel.numbers();
     if (const MemoryClient* m = kernel.memory()) {  // texel reads; the accumulators' bytes besides
-      b.stats.memory = MemoryStats{m->cache().config(), m->cache().counts(), m->cache().dirty_lines(), 0};
+      b.stats.memory = memory_stats(*m, 0);
       b.stats.memory->other_bytes = kernel.accumulator_bytes();
       b.details["accumulator_dram_bytes"] = kernel.accumulator_bytes();
     }

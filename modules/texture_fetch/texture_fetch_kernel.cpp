@@ -44,14 +44,9 @@ TextureFetchKernel::TextureFetchKernel(const core::Scene& scene, const Options& 
 
 // Phong's bilinear read through the cache: the footprint's lines, each once.
 void TextureFetchKernel::read_footprint(const Surface& s, int x0, int y0, int x1, int y1, int i) {
-  const uint32_t line = memory_->line_bytes();
-  uint64_t lines[4];
-  int count = 0;
-  for (const auto& [x, y] : {std::pair{x0, y0}, {x1, y0}, {x0, y1}, {x1, y1}}) {
-    const uint64_t l = address(memory_->layout(), s, line, x, y) / line;
-    if (std::find(lines, lines + count, l) == lines + count) lines[count++] = l;
-  }
-  for (int k = 0; k < count; ++k) memory_->read_line(lines[k]);
+  footprint_.clear();
+  for (const auto& [x, y] : {std::pair{x0, y0}, {x1, y0}, {x0, y1}, {x1, y1}}) footprint_.add(memory_->line_of(s, x, y));
+  footprint_.for_each([&](uint64_t line) { memory_->read_line(line); });
   lines_[i] = memory_->take_pixel_lines();
 }
 

@@ -68,6 +68,7 @@ class TextureFetchKernel {
   std::unique_ptr<MemoryClient> memory_;  // none: ideal memory
   std::vector<Surface> base_surfaces_;    // by texture index: the finest level (phong's bilinear read)
   uint16_t lines_[kSpanMax] = {};
+  LineBuffer footprint_;  // the bilinear footprint's lines, each once
   void read_footprint(const Surface& s, int x0, int y0, int x1, int y1, int i);
   ValueRange uv_range_;
   Ops ops_;
