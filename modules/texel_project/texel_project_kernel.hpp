@@ -138,7 +138,7 @@ class TexelProjectKernel {
   [[gnu::always_inline]] inline void sample_colour(const Splat& s, long i, long j, double u, double v, Sampler& bilinear, const MipMap& finest,
                      float colour[3]);
   template <class T> [[gnu::always_inline]] inline void splat(const Splat& s, T x, T y, const float colour[3]);
-  [[gnu::noinline]] void accumulate_in_memory(const int px[4], const int py[4], unsigned taken);
+  [[gnu::noinline]] void accumulate_in_memory(int px0, int py0, unsigned taken);
 
   const core::Scene& scene_;
   int units_;
