@@ -46,5 +46,14 @@ void describe(core::Frame& frame, const core::Scene& scene, const SceneOptions& 
 // (PNG, 0 to heat_max iterations), those named: all or none.
 void write_frame(const core::Frame& frame, const std::string& exr, const std::string& png, const std::string& heat = "",
                  float heat_max = 32);
+// The same as part of a larger set of outputs (committed by the caller).
+void add_frame(core::OutputSet& outputs, const core::Frame& frame, const std::string& exr, const std::string& png,
+               const std::string& heat = "", float heat_max = 32);
+// Before a run: every output (option, path; "" not asked for) can be written, is no
+// folder or special file, and is neither another output nor an input (InputError).
+void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                   const std::vector<std::string>& inputs);
+// An output the command always writes: an empty path is refused.
+void require_output(const std::string& option, const std::string& path);
 
 }  // namespace shadetlm::app

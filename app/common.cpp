@@ -1,5 +1,12 @@
 #include <filesystem>
 
+#include <cerrno>
+#include <cstring>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "app/commands.hpp"
 #include "shadetlm/core/input_error.hpp"
 #include "shadetlm/core/version.hpp"
@@ -36,35 +43,72 @@ void describe(core::Frame& frame, const core::Scene& scene, const SceneOptions& 
   frame.attributes["shadetlm:overrides"] = nlohmann::json(options.overrides).dump(-1, ' ', false, replace);
 }
 
+void add_frame(core::OutputSet& outputs, const core::Frame& frame, const std::string& exr, const std::string& png,
+               const std::string& heat, float heat_max) {
+  if (!heat.empty() && !frame.find("parallax.iterations"))
+    throw core::InputError("--heat-map", heat, "the frame has no parallax.iterations layer (no parallax material)");
+  if (!exr.empty()) outputs.write_with(exr, [&](const std::string& tmp) { core::write_exr(tmp, frame); });
+  if (!png.empty()) outputs.write(png, core::png_preview(frame));
+  if (!heat.empty()) outputs.write(heat, core::heat_map_png(frame, "parallax.iterations", heat_max));
+}
+
 void write_frame(const core::Frame& frame, const std::string& exr, const std::string& png, const std::string& heat,
                  float heat_max) {
-  for (const std::string& path : {exr, png, heat}) {
+  core::OutputSet outputs;
+  add_frame(outputs, frame, exr, png, heat, heat_max);
+  outputs.commit();
+}
+
+namespace {
+// The nearest folder of `path` that exists must take a new entry (the rest is made when
+// written): tried, since permissions alone do not tell (root, read-only mounts, /proc).
+void probe_writable(const std::string& option, const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path missing = fs::absolute(fs::path(path), ec), folder = missing.parent_path();
+  while (!fs::exists(folder, ec) && folder != folder.root_path()) missing = folder, folder = folder.parent_path();
+  if (!fs::is_directory(folder, ec)) throw core::InputError(option, path, "its folder " + folder.string() + " is a file");
+  const std::string probe = missing.string() == fs::absolute(fs::path(path), ec).string()
+                                ? core::temporary_path_for(missing.string())
+                                : missing.string();
+  const bool made = probe == missing.string() ? ::mkdir(probe.c_str(), 0777) == 0
+                                              : ::close(::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0666)) == 0;
+  const int error = errno;
+  if (!made) throw core::InputError(option, path, std::string("cannot be written: ") + std::strerror(error));
+  ::remove(probe.c_str());
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  namespace fs = std::filesystem;
+  std::error_code ec1, ec2;
+  if (fs::equivalent(a, b, ec1)) return true;  // both exist: links included
+  const fs::path ca = fs::weakly_canonical(a, ec1), cb = fs::weakly_canonical(b, ec2);
+  return !ec1 && !ec2 && ca == cb;
+}
+}  // namespace
+
+void require_output(const std::string& option, const std::string& path) {
+  if (path.empty()) throw core::InputError(option, "", "an empty path: name the file to write");
+}
+
+void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                   const std::vector<std::string>& inputs) {
+  namespace fs = std::filesystem;
+  for (size_t i = 0; i < outputs.size(); ++i) {
+    const auto& [option, path] = outputs[i];
     if (path.empty()) continue;
-    const auto dir = std::filesystem::path(path).parent_path();
-    if (!dir.empty()) std::filesystem::create_directories(dir);
+    for (size_t k = 0; k < i; ++k)
+      if (!outputs[k].second.empty() && same_file(path, outputs[k].second))
+        throw core::InputError(option, path, "is also the output of " + outputs[k].first);
+    for (const std::string& input : inputs)
+      if (same_file(path, input)) throw core::InputError(option, path, "is an input of this run (" + input + ")");
+    std::error_code ec;
+    const fs::file_status st = fs::status(path, ec);
+    if (fs::is_directory(st)) throw core::InputError(option, path, "is a folder");
+    if (fs::exists(st) && !fs::is_regular_file(st))
+      throw core::InputError(option, path, "exists and is not a regular file (a FIFO, a device): not replaced");
+    probe_writable(option, path);
   }
-  // Both files go to temporaries first: either both appear, or neither does.
-  std::vector<std::pair<std::string, std::string>> written;  // (temporary, final)
-  try {
-    if (!exr.empty()) {
-      written.emplace_back(core::temporary_path_for(exr), exr);
-      core::write_exr(written.back().first, frame);
-    }
-    if (!png.empty()) {
-      written.emplace_back(core::temporary_path_for(png), png);
-      core::write_png_preview(written.back().first, frame);
-    }
-    if (!heat.empty()) {
-      if (!frame.find("parallax.iterations"))
-        throw core::InputError("--heat-map", heat, "the frame has no parallax.iterations layer (no parallax material)");
-      written.emplace_back(core::temporary_path_for(heat), heat);
-      core::write_heat_map_png(written.back().first, frame, "parallax.iterations", heat_max);
-    }
-  } catch (...) {
-    for (const auto& [tmp, path] : written) core::remove_quietly(tmp);
-    throw;
-  }
-  for (const auto& [tmp, path] : written) core::rename_into_place(tmp, path);
 }
 
 }  // namespace shadetlm::app

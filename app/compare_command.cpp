@@ -6,6 +6,7 @@
 
 #include "app/commands.hpp"
 #include "shadetlm/core/compare.hpp"
+#include "shadetlm/core/input_error.hpp"
 
 namespace shadetlm::app {
 
@@ -41,6 +42,17 @@ Command add_compare_command(CLI::App& app) {
                   "write PREFIX-new.png, -reference.png, -diff.png (|A-B| x16) and -heat.png (error heat map)");
   return {cmd, [opt]() {
             const core::Frame a = core::read_exr(opt->a), b = core::read_exr(opt->b);
+            const std::string& p = opt->images;
+            check_outputs({{"--diff", opt->diff},
+                           {"--images", p.empty() ? "" : p + "-new.png"},
+                           {"--images", p.empty() ? "" : p + "-reference.png"},
+                           {"--images", p.empty() ? "" : p + "-diff.png"},
+                           {"--images", p.empty() ? "" : p + "-heat.png"}},
+                          {opt->a, opt->b});
+            if (!p.empty())
+              for (const auto& [file, frame] : {std::pair{opt->a, &a}, std::pair{opt->b, &b}})
+                if (!frame->find("R") || !frame->find("G") || !frame->find("B"))
+                  throw core::InputError(file, "--images", "the frame has no R, G, B channels to draw");
             const core::CompareResult r = core::compare_frames(a, b, opt->compare);
             if (opt->json) {
               std::cout << r.to_json().dump(2) << "\n";
@@ -51,10 +63,11 @@ Command add_compare_command(CLI::App& app) {
                           << " % of pixels over " << opt->compare.fail << (m.pass ? "" : "  FAIL") << "\n";
               std::cout << r.verdict() << "\n";
             }
+            core::OutputSet outputs;  // the difference and the images together, or none
             if (!opt->diff.empty() && r.problem.empty())
-              write_frame(core::difference_frame(a, b, r), opt->diff, "");
-            if (!opt->images.empty() && r.problem.empty())
-              core::write_comparison_images(opt->images, a, b, opt->compare.fail);
+              add_frame(outputs, core::difference_frame(a, b, r), opt->diff, "");
+            if (!p.empty() && r.problem.empty()) core::add_comparison_images(outputs, p, a, b, opt->compare.fail);
+            outputs.commit();
             return r.pass ? 0 : 2;
           }};
 }

@@ -6,6 +6,7 @@
 
 #include "app/commands.hpp"
 #include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/output.hpp"
 #include "shadetlm/core/version.hpp"
 
 using namespace shadetlm;  // core::, modules::, reference::
@@ -16,6 +17,7 @@ extern "C" int sc_main(int, char**) { return 1; }
 
 int main(int argc, char** argv) {
   setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);  // keep stdout for results
+  core::remove_temporaries_on_signals();  // an interrupted run leaves no partial output
   // SystemC errors become exceptions (reported with exit code 1), warnings go to stderr.
   sc_core::sc_report_handler::set_actions(sc_core::SC_ERROR, sc_core::SC_THROW);
   sc_core::sc_report_handler::set_actions(sc_core::SC_WARNING, sc_core::SC_DISPLAY);

@@ -70,12 +70,11 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
       cmd->add_option("--levels", opt->levels, "height levels the apexes round up to (default 4·slices)")
           ->check(CLI::Range(1, 4096));
     runs.push_back({cmd, [opt, k]() {
+                      require_output("--output", opt->output);
+                      check_outputs({{"--output", opt->output}}, {opt->height});
                       const core::Texture map = core::load_texture_file(opt->height);
                       const core::HeightField f = core::height_field(map, opt->height, "");
                       const auto start = std::chrono::steady_clock::now();
-                      const auto dir = std::filesystem::path(opt->output).parent_path();
-                      std::error_code ec;
-                      if (!dir.empty()) std::filesystem::create_directories(dir, ec);
                       double seconds = 0;
                       auto stamp = [&](std::map<std::string, std::string>& params) {
                         params["shadetlm:version"] = core::kVersion;
@@ -315,9 +314,7 @@ nlohmann::json measure_method(const Method& method, const modules::ParallaxMaps&
 // Writes the figures as JSON to `path` (nothing when it is empty).
 void write_figures(const std::string& path, const nlohmann::json& out) {
   if (path.empty()) return;
-  std::ofstream f(path);
-  f << out.dump(2) << "\n";
-  if (!f) throw core::InputError(path, "--json", "cannot be written");
+  core::write_file(path, out.dump(2) + "\n");
 }
 
 // A short table on the terminal: iterations and error per method and view.

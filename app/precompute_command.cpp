@@ -57,6 +57,8 @@ Command add_precompute_command(CLI::App& app) {
   return {cmd, [opt, maps]() {
             for (const auto& [sub, run] : *maps)
               if (sub->parsed()) return run();
+            require_output("--output", opt->output);
+            check_outputs({{"--output", opt->output}}, {opt->height, opt->surface});
             core::Texture height = core::load_texture_file(opt->height);
             height.wrap = opt->wrap == "repeat" ? core::Wrap::Repeat : core::Wrap::Clamp;
             core::check_height_map(height, opt->height, "");
@@ -74,9 +76,6 @@ Command add_precompute_command(CLI::App& app) {
             }
             const std::vector<core::Texture> levels = core::mip_levels(base, !opt->keep_mip_lengths);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            const auto dir = std::filesystem::path(opt->output).parent_path();
-            std::error_code ec;
-            if (!dir.empty()) std::filesystem::create_directories(dir, ec);
             try {
               core::write_mip_chain(opt->output, base, levels,
                                     {{"shadetlm:version", core::kVersion},

@@ -19,6 +19,8 @@ Command add_reference_command(CLI::App& app) {
   cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview");
   return {cmd, [opt]() {
             const core::Scene scene = opt->scene.load();
+            require_output("--output", opt->output);
+            check_outputs({{"--output", opt->output}, {"--preview", opt->preview}}, scene.inputs);
             const auto start = std::chrono::steady_clock::now();
             const reference::Image image = reference::render(scene);
             const double seconds =

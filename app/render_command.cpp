@@ -89,19 +89,6 @@ void parse_triangles(const std::string& text, modules::TraceRegion& r) {
   r.triangle_first = uint32_t(a), r.triangle_last = uint32_t(b);
 }
 
-// An output the run will write: its folder is made, and it must be writable (checked
-// before anything is simulated, so that bad paths stop with exit 2 and no output).
-void check_writable(const std::string& path, const std::string& option) {
-  if (path.empty()) return;
-  const auto dir = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-  if (std::filesystem::is_directory(path, ec)) throw core::InputError(option, path, "is a folder");
-  const std::string probe = core::temporary_path_for(path);
-  { std::ofstream test(probe); if (!test) throw core::InputError(option, path, "cannot be written"); }
-  core::remove_quietly(probe);
-}
-
 namespace {
 
 // The render command's options, as the command line sets them.
@@ -152,14 +139,16 @@ void check_before_simulation(const RenderOptions& opt, const core::Scene& scene,
         return scene.materials[size_t(o.material)].path == core::ShadingPath::Parallax;
       }))
     throw core::InputError("--heat-map", opt.heat_map, "the scene has no parallax material: no iterations to map");
-  check_writable(opt.output, "--output");
-  check_writable(opt.preview, "--preview");
-  check_writable(opt.heat_map, "--heat-map");
-  check_writable(opt.stats, "--stats");
-  check_writable(inspect.vcd, "--vcd");
-  check_writable(gtkw_path_of(inspect.vcd), "--vcd");
-  check_writable(inspect.timeline, "--timeline");
-  check_writable(opt.timing_log, "--timing-log");
+  require_output("--output", opt.output);
+  check_outputs({{"--output", opt.output},
+                 {"--preview", opt.preview},
+                 {"--heat-map", opt.heat_map},
+                 {"--stats", opt.stats},
+                 {"--vcd", inspect.vcd},
+                 {"--vcd", gtkw_path_of(inspect.vcd)},
+                 {"--timeline", inspect.timeline},
+                 {"--timing-log", opt.timing_log}},
+                scene.inputs);
   // The log is kept in memory during the run (about 100 bytes a pixel and block): for
   // the small frames the timing check is for.
   constexpr int64_t kMaxLoggedPixels = 1 << 20;
@@ -198,47 +187,20 @@ nlohmann::json statistics_of(const RenderOptions& opt, const modules::RenderResu
   return stats;
 }
 
-// Writes the frame, its preview and heat map and the statistics; on failure takes back
-// what this run wrote, inspection files included, and rethrows.
+// Writes the frame, its preview and heat map, the statistics and the timing log, all or
+// none; on failure takes back the inspection files too, and rethrows.
 void write_outputs(const RenderOptions& opt, const modules::RenderResult& r, const nlohmann::json& stats,
                    const modules::Inspect& inspect) {
-  const core::Frame& frame = r.frame;
-  // Frame, preview and statistics appear together or not at all: the
-  // statistics go to a temporary first and are renamed after the frame.
-  const std::string stats_tmp = opt.stats.empty() ? "" : core::temporary_path_for(opt.stats);
-  bool log_written = false;
   try {
-    if (!stats_tmp.empty()) {
-      std::ofstream out(stats_tmp);
-      out << stats.dump(2) << "\n";
-      if (!out) throw std::runtime_error(opt.stats + ": cannot write the statistics");
-    }
-    if (!opt.timing_log.empty())
-      core::write_atomically(opt.timing_log, [&](const std::string& tmp) {
-        std::ofstream out(tmp, std::ios::binary);
-        out << r.timing_log;
-        out.flush();
-        if (!out) throw std::runtime_error(opt.timing_log + ": cannot write the timing log");
-      });
-    log_written = !opt.timing_log.empty();
-    write_frame(frame, opt.output, opt.preview, opt.heat_map, opt.heat_max);
+    core::OutputSet outputs;
+    // (text from the command line need not be UTF-8: replaced, not refused after the render)
+    if (!opt.stats.empty()) outputs.write(opt.stats, stats.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    if (!opt.timing_log.empty()) outputs.write(opt.timing_log, r.timing_log);
+    add_frame(outputs, r.frame, opt.output, opt.preview, opt.heat_map, opt.heat_max);
+    outputs.commit();
   } catch (...) {
-    if (!stats_tmp.empty()) core::remove_quietly(stats_tmp);
-    if (log_written) core::remove_quietly(opt.timing_log);
     take_back_inspection(inspect);
     throw;
-  }
-  if (!stats_tmp.empty()) {
-    try {
-      core::rename_into_place(stats_tmp, opt.stats);
-    } catch (...) {  // take the frame back: no output of a run that failed
-      core::remove_quietly(opt.output);
-      if (!opt.preview.empty()) core::remove_quietly(opt.preview);
-      if (!opt.heat_map.empty()) core::remove_quietly(opt.heat_map);
-      if (log_written) core::remove_quietly(opt.timing_log);
-      take_back_inspection(inspect);
-      throw;
-    }
   }
 }
 

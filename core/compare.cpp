@@ -5,7 +5,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <stb_image_write.h>
 
 namespace shadetlm::core {
 
@@ -115,9 +114,10 @@ Frame difference_frame(const Frame& a, const Frame& b, const CompareResult& resu
   return d;
 }
 
-void write_comparison_images(const std::string& prefix, const Frame& a, const Frame& b, double fail) {
-  write_png_preview(prefix + "-new.png", a);
-  write_png_preview(prefix + "-reference.png", b);
+void add_comparison_images(OutputSet& outputs, const std::string& prefix, const Frame& a, const Frame& b,
+                           double fail) {
+  outputs.write(prefix + "-new.png", png_preview(a));
+  outputs.write(prefix + "-reference.png", png_preview(b));
   const char* names[3] = {"R", "G", "B"};
   const size_t n = a.pixel_count();
   std::vector<unsigned char> diff(n * 3), heat(n * 3);
@@ -139,14 +139,8 @@ void write_comparison_images(const std::string& prefix, const Frame& a, const Fr
     }
     for (int k = 0; k < 3; ++k) heat[i * 3 + size_t(k)] = static_cast<unsigned char>(std::lround(colour[k] * 255.0));
   }
-  auto write = [&](const std::string& path, const std::vector<unsigned char>& pixels) {
-    write_atomically(path, [&](const std::string& tmp) {
-      if (!stbi_write_png(tmp.c_str(), a.width, a.height, 3, pixels.data(), a.width * 3))
-        throw std::runtime_error(path + ": cannot write the PNG");
-    });
-  };
-  write(prefix + "-diff.png", diff);
-  write(prefix + "-heat.png", heat);
+  outputs.write(prefix + "-diff.png", encode_png(a.width, a.height, diff));
+  outputs.write(prefix + "-heat.png", encode_png(a.width, a.height, heat));
 }
 
 nlohmann::json json_figure(double x) {

@@ -57,6 +57,8 @@ Frame difference_frame(const Frame& a, const Frame& b, const CompareResult& resu
 // (sRGB previews of A and B), -diff.png (|A − B| of R, G, B times 16) and -heat.png
 // (each pixel's largest colour error on a logarithmic ramp: black below 1e-6, then
 // blue, cyan, green, yellow, red at 1e-1 and above; pixels over `fail` are never black).
-void write_comparison_images(const std::string& prefix, const Frame& a, const Frame& b, double fail);
+// (to `outputs`, committed by the caller; both frames need R, G and B)
+void add_comparison_images(OutputSet& outputs, const std::string& prefix, const Frame& a, const Frame& b,
+                           double fail);
 
 }  // namespace shadetlm::core

@@ -39,22 +39,4 @@ const std::vector<float>& Frame::at(const std::string& name) const {
   return c->values;
 }
 
-std::string temporary_path_for(const std::string& path) {
-  return path + ".tmp." + std::to_string(::getpid());
-}
-
-void remove_quietly(const std::string& path) {
-  std::error_code ec;
-  std::filesystem::remove(path, ec);
-}
-
-void rename_into_place(const std::string& tmp, const std::string& path) {
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    remove_quietly(tmp);
-    throw std::runtime_error(path + ": cannot write the file: " + ec.message());
-  }
-}
-
 }  // namespace shadetlm::core

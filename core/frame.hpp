@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "shadetlm/core/output.hpp"  // how every output is written
+
 namespace shadetlm::core {
 
 struct Channel {
@@ -43,26 +45,9 @@ void write_png_preview(const std::string& path, const Frame& frame);
 // Writes one channel as a heat map PNG (black, blue, red, yellow, white from 0 to
 // max_value; larger values white), also through a rename.
 void write_heat_map_png(const std::string& path, const Frame& frame, const std::string& channel, float max_value);
-
-// ---- The core component again.
-// Calls write(tmp) with a temporary path beside `path`, then renames it to `path`;
-// removes the temporary file if write throws.
-template <class F>
-void write_atomically(const std::string& path, F write);
-void rename_into_place(const std::string& tmp, const std::string& path);
-std::string temporary_path_for(const std::string& path);
-void remove_quietly(const std::string& path);
-
-template <class F>
-void write_atomically(const std::string& path, F write) {
-  const std::string tmp = temporary_path_for(path);
-  try {
-    write(tmp);
-  } catch (...) {
-    remove_quietly(tmp);
-    throw;
-  }
-  rename_into_place(tmp, path);
-}
+// The same PNGs as bytes (to write with an OutputSet); an 8-bit RGB image's PNG.
+std::string png_preview(const Frame& frame);
+std::string heat_map_png(const Frame& frame, const std::string& channel, float max_value);
+std::string encode_png(int width, int height, const std::vector<unsigned char>& rgb);
 
 }  // namespace shadetlm::core

@@ -12,6 +12,7 @@
 #include <ImfStringAttribute.h>
 #include <stb_image_write.h>
 
+#include "shadetlm/core/input_file.hpp"
 #include "shadetlm/core/frame.hpp"
 #include "shadetlm/core/input_error.hpp"
 #include "shadetlm/core/texture.hpp"
@@ -40,6 +41,7 @@ void write_exr(const std::string& path, const Frame& frame) {
 }
 
 Frame read_exr(const std::string& path) {
+  check_input_file(path, "", kMaxImageBytes);
   try {
     Imf::InputFile in(path.c_str());
     const Imf::Header& h = in.header();
@@ -63,7 +65,17 @@ Frame read_exr(const std::string& path) {
   }
 }
 
-void write_png_preview(const std::string& path, const Frame& frame) {
+// An 8-bit RGB PNG in memory (written with write_file, whose writes are checked: stb's
+// own file writer does not check them).
+std::string encode_png(int width, int height, const std::vector<unsigned char>& rgb) {
+  std::string bytes;
+  auto append = [](void* to, void* data, int size) { static_cast<std::string*>(to)->append(static_cast<char*>(data), size_t(size)); };
+  if (!stbi_write_png_to_func(append, &bytes, width, height, 3, rgb.data(), width * 3))
+    throw std::runtime_error("cannot encode the PNG");
+  return bytes;
+}
+
+std::string png_preview(const Frame& frame) {
   const char* names[3] = {"R", "G", "B"};
   std::vector<unsigned char> rgb(frame.pixel_count() * 3);
   for (int k = 0; k < 3; ++k) {
@@ -73,13 +85,10 @@ void write_png_preview(const std::string& path, const Frame& frame) {
       rgb[i * 3 + k] = static_cast<unsigned char>(std::lround(linear_to_srgb(v) * 255.0));
     }
   }
-  write_atomically(path, [&](const std::string& tmp) {
-    if (!stbi_write_png(tmp.c_str(), frame.width, frame.height, 3, rgb.data(), frame.width * 3))
-      throw std::runtime_error(path + ": cannot write the PNG");
-  });
+  return encode_png(frame.width, frame.height, rgb);
 }
 
-void write_heat_map_png(const std::string& path, const Frame& frame, const std::string& channel, float max_value) {
+std::string heat_map_png(const Frame& frame, const std::string& channel, float max_value) {
   const std::vector<float>& c = frame.at(channel);
   std::vector<unsigned char> rgb(frame.pixel_count() * 3);
   // A ramp black → blue → red → yellow → white, piecewise linear in the value.
@@ -92,10 +101,13 @@ void write_heat_map_png(const std::string& path, const Frame& frame, const std::
     for (int j = 0; j < 3; ++j)
       rgb[i * 3 + size_t(j)] = static_cast<unsigned char>(std::lround(255 * (stops[k][j] + (stops[k + 1][j] - stops[k][j]) * f)));
   }
-  write_atomically(path, [&](const std::string& tmp) {
-    if (!stbi_write_png(tmp.c_str(), frame.width, frame.height, 3, rgb.data(), frame.width * 3))
-      throw std::runtime_error(path + ": cannot write the PNG");
-  });
+  return encode_png(frame.width, frame.height, rgb);
+}
+
+void write_png_preview(const std::string& path, const Frame& frame) { write_file(path, png_preview(frame)); }
+
+void write_heat_map_png(const std::string& path, const Frame& frame, const std::string& channel, float max_value) {
+  write_file(path, heat_map_png(frame, channel, max_value));
 }
 
 }  // namespace shadetlm::core

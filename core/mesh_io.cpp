@@ -1,3 +1,4 @@
+#include "shadetlm/core/input_file.hpp"
 #include "shadetlm/core/mesh_io.hpp"
 
 #include <cmath>
@@ -11,6 +12,7 @@
 namespace shadetlm::core {
 
 Mesh load_mesh_file(const std::string& path) {
+  check_input_file(path, "", kMaxMeshBytes);
   Assimp::Importer importer;
   // Points and lines are not shaded: drop them.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "shadetlm/core/bump_map.hpp"
+#include "shadetlm/core/input_file.hpp"
 #include "shadetlm/core/json_reader.hpp"
 #include "shadetlm/core/mesh_io.hpp"
 
@@ -119,8 +120,6 @@ Texture read_texture(JsonReader r, const std::string& name, const std::string& b
   Texture t;
   if (type == "image") {
     const std::string file = resolve(base_dir, r.string("file"));
-    std::error_code ec;
-    if (!fs::is_regular_file(file, ec)) r.fail("file", "no such file: " + file);
     try {
       t = load_texture_file(file);
     } catch (const InputError& e) {
@@ -178,8 +177,6 @@ Mesh read_shape(JsonReader& r, const std::string& shape, const std::string& base
   }
   if (shape == "cube") return make_cube(r.number("size", 1.0, kMinLength, kMaxLength));
   const std::string file = resolve(base_dir, r.string("file"));
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) r.fail("file", "no such file: " + file);
   try {
     return load_mesh_file(file);
   } catch (const InputError& e) {
@@ -439,6 +436,18 @@ Object read_object(JsonReader r, std::map<std::string, int>& material_index, con
   return o;
 }
 
+// The files a scene reads: itself, its image textures and its mesh files.
+std::vector<std::string> files_read(const Scene& s, const json& doc, const std::string& base_dir) {
+  std::vector<std::string> files;
+  if (s.file != "<built-in demo>") files.push_back(s.file);
+  if (doc.contains("textures"))
+    for (const auto& [name, t] : doc["textures"].items())
+      if (t.is_object() && t.contains("file") && t["file"].is_string()) files.push_back(resolve(base_dir, t["file"]));
+  for (const auto& o : doc["objects"])
+    if (o.is_object() && o.contains("file") && o["file"].is_string()) files.push_back(resolve(base_dir, o["file"]));
+  return files;
+}
+
 // The pipeline object's settings (the defaults without one).
 PipelineConfig read_pipeline(JsonReader& root, const std::string& name) {
   json pipeline = root.has("pipeline") ? root.raw("pipeline") : json();
@@ -475,10 +484,12 @@ Scene load_scene_text(const std::string& text, const std::string& name, const st
 
   s.pipeline = read_pipeline(root, name);
   root.finish();
+  s.inputs = files_read(s, doc, base_dir);
   return s;
 }
 
 Scene load_scene(const std::string& file, const std::vector<std::string>& overrides) {
+  check_input_file(file, "", kMaxSceneBytes);
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file, "", "cannot open the scene file");
   std::stringstream ss;

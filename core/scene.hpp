@@ -103,6 +103,7 @@ struct Object {
 
 struct Scene {
   std::string file;  // where it was read from ("<built-in demo>" for the demo)
+  std::vector<std::string> inputs;  // the files it read: itself, images, meshes
   nlohmann::json source;  // the scene JSON after --set overrides
   Camera camera;
   glm::dvec3 ambient{0, 0, 0};

@@ -11,6 +11,7 @@
 #include <stb_image.h>
 
 #include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/input_file.hpp"
 #include "shadetlm/core/texture.hpp"
 
 namespace shadetlm::core {
@@ -65,6 +66,7 @@ Texture read_exr_texture(const std::string& path) {
 }  // namespace
 
 Texture load_texture_file(const std::string& path) {
+  check_input_file(path, "", kMaxImageBytes);
   Texture t;
   t.name = path;
   auto ends_with = [&](const char* ext) {

@@ -1,6 +1,7 @@
 // EXR frames: channels, types, compression and attributes survive a round trip, and a
 // failed write leaves nothing behind.
 #include <filesystem>
+#include <fstream>
 
 #include <ImfChannelList.h>
 #include <ImfHeader.h>
@@ -73,7 +74,9 @@ TEST_CASE("half channels are read as float", "[frames]") {
 
 TEST_CASE("a failed write leaves no file, partial or temporary", "[frames]") {
   const auto dir = test::temp_dir("exr-fail");
-  const std::string path = (dir / "missing-folder" / "f.exr").string();
+  // A folder that cannot be made (a file stands in its place).
+  { std::ofstream((dir / "a-file").string()) << "x"; }
+  const std::string path = (dir / "a-file" / "f.exr").string();
   CHECK_THROWS(core::write_exr(path, sample_frame()));
   CHECK(!fs::exists(path));
   // A failed rename (the target is a folder) leaves no temporary behind.
@@ -83,7 +86,7 @@ TEST_CASE("a failed write leaves no file, partial or temporary", "[frames]") {
   core::write_exr((dir / "ok.exr").string(), sample_frame());
   int files = 0;
   for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
-  CHECK(files == 1);  // ok.exr only
+  CHECK(files == 2);  // a-file and ok.exr only
 }
 
 TEST_CASE("a file that is not an EXR is reported by name", "[frames][bad]") {

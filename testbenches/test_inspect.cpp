@@ -31,7 +31,7 @@ TEST_CASE("the VCD is well formed and its traced values are the frame's", "[insp
   CHECK(vcd.header_ok);
   CHECK(vcd.times_ok);
   // Replay the framebuffer's signals: at each rise of valid, the pixel written.
-  const std::string fb = "SystemC.shadetlm.framebuffer.";
+  const std::string fb = "shadetlm.framebuffer.";
   for (const char* s : {"valid", "x[31:0]", "y[31:0]", "r", "g", "b", "z"}) REQUIRE(vcd.id_of.count(fb + s));
   std::map<std::string, double> value;
   std::map<std::pair<int, int>, std::array<double, 4>> written;  // last write per pixel
@@ -159,7 +159,7 @@ TEST_CASE("every traced record reaches the VCD, also when the replay idles", "[i
     const std::string block = name.substr(0, dot + 1), signal = name.substr(dot + 1);
     if (blocks.count(block) && (signal == "valid" || signal == "x[31:0]" || signal == "y[31:0]" || signal == "triangle[31:0]"))
       touched.insert(block);
-    if (name == "SystemC.shadetlm.end_of_trace" && c.value == 1) ended = true;
+    if (name == "shadetlm.end_of_trace" && c.value == 1) ended = true;
   }
   flush();
   CHECK(seen == r.trace_records);

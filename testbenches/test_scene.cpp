@@ -115,7 +115,7 @@ TEST_CASE("a missing scene file is reported", "[scene][bad]") {
     FAIL("no error");
   } catch (const core::InputError& e) {
     CHECK(e.file() == "/nonexistent/scene.json");
-    CHECK_THAT(e.what(), Catch::Contains("cannot open"));
+    CHECK_THAT(e.what(), Catch::Contains("no such file"));
   }
 }
 

@@ -15,7 +15,7 @@ struct Vcd {
     std::string id;
     double value;  // reals as read; vectors and bits as integers
   };
-  std::map<std::string, std::string> name_of;  // id → "SystemC.shadetlm.raster.x[31:0]"
+  std::map<std::string, std::string> name_of;  // id → "shadetlm.raster.x[31:0]"
   std::map<std::string, std::string> id_of;    // full name → id
   std::vector<Change> changes;                 // in file order
   bool header_ok = false;                      // $timescale, $scope, $var, $enddefinitions seen

@@ -1,7 +1,7 @@
 #include "shadetlm/modules/common/timeline.hpp"
 
 #include <algorithm>
-#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "shadetlm/core/frame.hpp"
@@ -9,8 +9,8 @@
 namespace shadetlm::modules {
 
 void Timeline::write(const std::string& path, const std::vector<std::string>& names, double clock_mhz) const {
-  core::write_atomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp);
+  std::ostringstream out;
+  {
     out.precision(12);
     out << "{\"displayTimeUnit\": \"ns\", \"traceEvents\": [\n";
     // Track names, in pipeline order.
@@ -34,8 +34,8 @@ void Timeline::write(const std::string& path, const std::vector<std::string>& na
           << "}}";
     }
     out << "\n]}\n";
-    if (!out) throw std::runtime_error(path + ": cannot write the timeline");
-  });
+  }
+  core::write_file(path, out.str());
 }
 
 }  // namespace shadetlm::modules

@@ -1,111 +1,177 @@
 #include "shadetlm/modules/common/trace.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+
+#include "shadetlm/core/output.hpp"
+#include "shadetlm/core/version.hpp"
 
 namespace shadetlm::modules {
 
-Tracer::Tracer(sc_core::sc_module_name name, const std::string& vcd_path, TraceRegion region,
-               sc_core::sc_time period)
-    : sc_core::sc_module(name), region_(region), period_(period) {
-  // sc_create_vcd_trace_file appends ".vcd" itself.
-  std::string base = vcd_path;
-  if (base.size() > 4 && base.compare(base.size() - 4, 4, ".vcd") == 0) base.resize(base.size() - 4);
-  file_ = sc_core::sc_create_vcd_trace_file(base.c_str());
-  file_->set_time_unit(1.0, sc_core::SC_PS);
-  sc_core::sc_trace(file_, end_, "shadetlm.end_of_trace");
-  SC_THREAD(run);
-}
-
-Tracer::~Tracer() {
-  if (file_) sc_core::sc_close_vcd_trace_file(file_);
-}
+Tracer::Tracer(TraceRegion region, sc_core::sc_time period) : region_(region), period_(period) {}
 
 int Tracer::add_probe(const std::string& block, const std::vector<std::string>& values) {
   sc_assert(values.size() <= size_t(kMaxValues));
-  auto probe = std::make_unique<Probe>();
-  probe->values.assign(values.size(), 0.0);
   ProbeInfo info;
   info.block = block;
-  // The VCD writer puts every signal under its own top scope, "SystemC".
-  const std::string prefix = "shadetlm." + block + ".";
-  auto add = [&](auto& var, const std::string& n, bool real) {
-    sc_core::sc_trace(file_, var, prefix + n);
-    info.names.push_back("SystemC." + prefix + n);
-    info.is_real.push_back(real);
-  };
-  add(probe->valid, "valid", false);
-  add(probe->ready, "ready", false);
-  add(probe->x, "x", false);
-  add(probe->y, "y", false);
-  add(probe->triangle, "triangle", false);
-  for (size_t k = 0; k < values.size(); ++k) add(probe->values[k], values[k], true);
-  probes_.push_back(std::move(probe));
+  for (const char* n : {"valid", "ready", "x", "y", "triangle"}) {
+    info.names.push_back("shadetlm." + block + "." + n);
+    info.is_real.push_back(false);
+  }
+  for (const auto& n : values) {
+    info.names.push_back("shadetlm." + block + "." + n);
+    info.is_real.push_back(true);
+  }
+  value_count_.push_back(values.size());
   info_.push_back(info);
-  return int(probes_.size() - 1);
+  return int(info_.size() - 1);
 }
 
 void Tracer::record(int probe, uint64_t valid, uint64_t handed, int x, int y, uint32_t triangle,
                     const double* values) {
-  Event e{valid, 1, seq_++, probe, x, y, triangle, {}};
-  std::copy(values, values + probes_[probe]->values.size(), e.values.begin());
-  queue_.push(e);
-  queue_.push({handed, 2, seq_++, probe, 0, 0, 0, {}});      // the handshake
-  queue_.push({handed + 1, 0, seq_++, probe, 0, 0, 0, {}});  // then gone
-  const uint64_t cycle = valid;
-  first_ = records_ == 0 ? cycle : std::min(first_, cycle);
+  const uint64_t seq = events_.size();
+  Event e{valid, 1, seq, probe, x, y, triangle, {}};
+  std::copy(values, values + value_count_[size_t(probe)], e.values.begin());
+  events_.push_back(e);
+  events_.push_back({handed, 2, seq + 1, probe, 0, 0, 0, {}});      // the handshake
+  events_.push_back({handed + 1, 0, seq + 2, probe, 0, 0, 0, {}});  // then gone
+  first_ = records_ == 0 ? valid : std::min(first_, valid);
   last_ = std::max(last_, handed + 1);
   ++records_;
-  // Wake the replay only if this record comes before what it waits for.
-  if (cycle < next_wake_) wake_.notify(sc_core::SC_ZERO_TIME);
 }
 
-void Tracer::source_done() {
-  source_done_ = true;
-  wake_.notify(sc_core::SC_ZERO_TIME);
+namespace {
+
+// VCD identifiers: printable characters from '!' on, as digits.
+std::string vcd_id(size_t n) {
+  std::string id;
+  do id += char('!' + n % 94), n /= 94;
+  while (n > 0);
+  return id;
 }
 
-void Tracer::run() {
-  while (true) {
-    if (queue_.empty()) {
-      next_wake_ = UINT64_MAX;  // idle: any record wakes the replay
-      if (source_done_) {
-        // Extend the dump 10 % past the traced span, so that a viewer's window on the
-        // whole span fits inside it (GTKWave ignores a start time otherwise).
-        const sc_core::sc_time end = period_ * double(last_ + (last_ - first_) / 10 + 1);
-        if (end > sc_core::sc_time_stamp()) sc_core::wait(end - sc_core::sc_time_stamp());
-        end_ = true;
-        // The VCD writer writes a time step's values only when time moves on from it.
-        sc_core::wait(period_);
-        return;
-      }
-      sc_core::wait(wake_);
-      continue;
-    }
-    const sc_core::sc_time at = period_ * double(queue_.top().cycle);
-    const sc_core::sc_time now = sc_core::sc_time_stamp();
-    if (at > now) {
-      next_wake_ = queue_.top().cycle;
-      sc_core::wait(at - now, wake_);  // a new, earlier record may arrive meanwhile
-      next_wake_ = UINT64_MAX;
-      continue;
-    }
-    while (!queue_.empty() && period_ * double(queue_.top().cycle) <= now) {
-      const Event& e = queue_.top();
-      Probe& p = *probes_[e.probe];
-      if (e.kind == 0) {
-        p.valid = p.ready = false;
-      } else if (e.kind == 2) {
-        p.ready = true;
-      } else {
-        p.valid = true;
-        p.x = e.x;
-        p.y = e.y;
-        p.triangle = e.triangle;
-        std::copy(e.values.begin(), e.values.begin() + p.values.size(), p.values.begin());
-      }
-      queue_.pop();
-    }
+// The VCD's text, gathered in a buffer written out in large pieces.
+class VcdText {
+ public:
+  explicit VcdText(core::CheckedFile& file) : file_(file) {}
+  ~VcdText() = default;
+  VcdText& operator<<(std::string_view s) {
+    text_ += s;
+    if (text_.size() > (1u << 20)) flush();
+    return *this;
   }
+  void number(uint64_t n) {
+    char b[24];
+    text_.append(b, size_t(std::to_chars(b, b + sizeof b, n).ptr - b));
+  }
+  void binary(uint32_t v) {  // "b101"
+    text_ += 'b';
+    int top = 31;
+    while (top > 0 && !(v >> top & 1)) --top;
+    for (int k = top; k >= 0; --k) text_ += char('0' + (v >> k & 1));
+  }
+  void real(double v) {  // shortest text that reads back as v
+    char b[32];
+    text_ += 'r';
+    text_.append(b, size_t(std::to_chars(b, b + sizeof b, v).ptr - b));
+  }
+  void flush() {
+    file_.write(text_);
+    text_.clear();
+  }
+
+ private:
+  core::CheckedFile& file_;
+  std::string text_;
+};
+
+}  // namespace
+
+void Tracer::write_vcd(const std::string& path) const {
+  // The signals' current values: per probe valid, ready, x, y, triangle, then values.
+  struct Signal {
+    std::string id;
+    bool real;
+    double value;  // (integers held exactly)
+    bool dumped = false;
+    double written = 0;
+  };
+  std::vector<std::vector<Signal>> signals(info_.size());
+  size_t next_id = 1;  // 0: end_of_trace
+  core::Temporary tmp(path);
+  core::CheckedFile file(tmp.path(), path);
+  VcdText vcd(file);
+  vcd << "$version shadetlm " << core::kVersion << " $end\n$timescale 1 ps $end\n$scope module shadetlm $end\n"
+      << "$var wire 1 " << vcd_id(0) << " end_of_trace $end\n";
+  for (size_t p = 0; p < info_.size(); ++p) {
+    vcd << "$scope module " << info_[p].block << " $end\n";
+    for (size_t k = 0; k < info_[p].names.size(); ++k) {
+      Signal s{vcd_id(next_id++), info_[p].is_real[k], 0.0};
+      const std::string name = info_[p].names[k].substr(info_[p].names[k].rfind('.') + 1);
+      if (s.real) vcd << "$var real 64 " << s.id << " " << name << " $end\n";
+      else if (k <= 1) vcd << "$var wire 1 " << s.id << " " << name << " $end\n";
+      else vcd << "$var wire 32 " << s.id << " " << name << " [31:0] $end\n";
+      signals[p].push_back(s);
+    }
+    vcd << "$upscope $end\n";
+  }
+  vcd << "$upscope $end\n$enddefinitions $end\n";
+  // A time step's changes: each signal whose value differs from what was last written.
+  auto dump = [&](bool all) {
+    for (size_t p = 0; p < signals.size(); ++p)
+      for (size_t k = 0; k < signals[p].size(); ++k) {
+        Signal& s = signals[p][k];
+        if (s.dumped && !all && std::memcmp(&s.value, &s.written, sizeof s.value) == 0) continue;
+        if (s.real) vcd.real(s.value);
+        else if (k <= 1) vcd << (s.value != 0 ? "1" : "0");
+        else vcd.binary(uint32_t(int64_t(s.value)));
+        vcd << (s.real || k > 1 ? " " : "") << s.id << "\n";
+        s.written = s.value, s.dumped = true;
+      }
+  };
+  const double ps = period_.to_seconds() * 1e12;
+  auto time_of = [&](uint64_t cycle) { return uint64_t(std::llround(double(cycle) * ps)); };
+  vcd << "#0\n$dumpvars\n0" << vcd_id(0) << "\n";
+  dump(true);
+  vcd << "$end\n";
+  std::vector<Event> events = events_;
+  std::sort(events.begin(), events.end());
+  for (size_t e = 0; e < events.size();) {
+    const uint64_t cycle = events[e].cycle;
+    for (; e < events.size() && events[e].cycle == cycle; ++e) {
+      const Event& ev = events[e];
+      std::vector<Signal>& s = signals[size_t(ev.probe)];
+      if (ev.kind == 0) {
+        s[0].value = s[1].value = 0;
+      } else if (ev.kind == 2) {
+        s[1].value = 1;
+      } else {
+        s[0].value = 1, s[2].value = ev.x, s[3].value = ev.y, s[4].value = ev.triangle;
+        for (size_t k = 0; k < value_count_[size_t(ev.probe)]; ++k) s[5 + k].value = ev.values[k];
+      }
+    }
+    if (cycle == 0) {
+      dump(false);  // (at #0, after the initial values)
+      continue;
+    }
+    vcd << "#";
+    vcd.number(time_of(cycle));
+    vcd << "\n";
+    dump(false);
+  }
+  // The dump runs 10 % past the traced span, so that a viewer's window on the whole
+  // span fits inside it (GTKWave ignores a start time otherwise), where end_of_trace rises.
+  const uint64_t end = std::max<uint64_t>(last_ + (last_ - first_) / 10 + 1, 1);
+  vcd << "#";
+  vcd.number(time_of(end));
+  vcd << "\n1" << vcd_id(0) << "\n#";
+  vcd.number(time_of(end + 1));
+  vcd << "\n";
+  vcd.flush();
+  file.close();
+  tmp.commit();
 }
 
 }  // namespace shadetlm::modules

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include <tlm_utils/tlm_quantumkeeper.h>
@@ -144,7 +145,7 @@ class Top : public sc_core::sc_module {
     region_ = inspect.region;
     if (!inspect.region_given) region_.x0 = 0, region_.y0 = 0, region_.x1 = camera.width - 1, region_.y1 = camera.height - 1;
     const TraceRegion* filter = inspect.region_given ? &region_ : nullptr;
-    if (!inspect.vcd.empty()) tracer_ = std::make_unique<Tracer>("tracer", inspect.vcd, region_, period_);
+    if (!inspect.vcd.empty()) tracer_ = std::make_unique<Tracer>(region_, period_);
     Timeline* timeline = inspect.timeline.empty() ? nullptr : &timeline_;
     for (size_t i = 0; i < modules_.size(); ++i) {
       const auto names = pipeline.blocks()[i].block->trace_names();
@@ -258,8 +259,9 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
     for (size_t i = 0; i <= top.line().size(); ++i) log->stats(m[i]->block_name(), m[i]->times());
     r.timing_log = log->text();
   }
-  if (top.tracer() && std::filesystem::exists(inspect.vcd)) {
+  if (top.tracer()) {
     r.trace_records = top.tracer()->records();
+    top.tracer()->write_vcd(inspect.vcd);
     const double ps = 1e6 / clock_mhz;
     write_gtkw(inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw", inspect.vcd, top.tracer()->probes(),
                double(top.tracer()->first_cycle()) * ps, double(top.tracer()->last_cycle()) * ps);
@@ -278,8 +280,8 @@ void write_gtkw(const std::string& path, const std::string& vcd, const std::vect
   // GTKWave's save format: "@<flags in hex>" sets how the following signals are
   // drawn, "-text" is a comment line. 28 = binary, right-justified (1-bit valid, ready);
   // 24 = decimal; 8420 = analog step, signed, right-justified (real values).
-  core::write_atomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp);
+  std::ostringstream out;
+  {
     out << "[*] shadetlm: the blocks in pipeline order\n"
         << "[dumpfile] \"" << std::filesystem::absolute(vcd).string() << "\"\n"
         << "[savefile] \"" << std::filesystem::absolute(path).string() << "\"\n"
@@ -299,8 +301,8 @@ void write_gtkw(const std::string& path, const std::string& vcd, const std::vect
       }
       out << "@1000200\n-" << p.block << "\n";  // group end
     }
-    if (!out) throw std::runtime_error(path + ": cannot write the GTKWave save file");
-  });
+  }
+  core::write_file(path, out.str());
 }
 
 }  // namespace shadetlm::modules

@@ -56,7 +56,6 @@ void Setup::run() {
   trans.set_data_length(sizeof(PassEnd));
   sc_core::sc_time delay = sc_core::SC_ZERO_TIME;
   out->b_transport(trans, delay);
-  if (tracer_) tracer_->source_done();
 }
 
 }  // namespace shadetlm::modules

@@ -1,0 +1,199 @@
+#include "shadetlm/core/output.hpp"
+
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace shadetlm::core {
+
+namespace {
+
+// The temporaries being written, for the signal handler: fixed slots, since a handler
+// may not allocate. A slot's path is complete before `used` is set.
+constexpr int kSlots = 64;
+char slot_path[kSlots][4096];
+std::atomic<bool> slot_used[kSlots];
+
+int register_temporary(const std::string& tmp) {
+  if (tmp.size() >= sizeof(slot_path[0])) return -1;
+  for (int i = 0; i < kSlots; ++i) {
+    bool expected = false;
+    if (slot_used[i].load() || !slot_used[i].compare_exchange_strong(expected, true)) continue;
+    slot_used[i] = false;  // not visible to the handler until the path is whole
+    std::memcpy(slot_path[i], tmp.c_str(), tmp.size() + 1);
+    slot_used[i] = true;
+    return i;
+  }
+  return -1;  // more outputs at once than slots: only a signal's clean-up misses it
+}
+
+void unregister_temporary(int slot) {
+  if (slot >= 0) slot_used[slot] = false;
+}
+
+extern "C" void on_signal(int signal) {
+  for (int i = 0; i < kSlots; ++i)
+    if (slot_used[i]) ::unlink(slot_path[i]);
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);  // ends the process by the signal: its status is 128 + signal
+}
+
+// Temporaries "<name>.tmp.<pid>" of `path` whose process is gone: a run killed outright.
+void remove_stale_temporaries(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path output(path);
+  const fs::path folder = output.has_parent_path() ? output.parent_path() : fs::path(".");
+  const std::string prefix = output.filename().string() + ".tmp.";
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string pid = name.substr(prefix.size());
+    if (pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
+    if (::kill(pid_t(std::stol(pid)), 0) == 0 || errno != ESRCH) continue;  // still running
+    if (fs::remove(it->path(), ec))
+      std::cerr << "shadetlm: removed " << it->path().string() << ", left by a run that was killed (process "
+                << pid << ")\n";
+  }
+}
+
+}  // namespace
+
+std::string temporary_path_for(const std::string& path) { return path + ".tmp." + std::to_string(::getpid()); }
+
+void remove_quietly(const std::string& path) {
+  std::error_code ec;
+  std::filesystem::remove(path, ec);
+}
+
+void rename_into_place(const std::string& tmp, const std::string& path) {
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    remove_quietly(tmp);
+    throw std::runtime_error(path + ": cannot write the file: " + ec.message());
+  }
+}
+
+std::string naming_output(std::string what, const std::string& tmp, const std::string& path) {
+  for (size_t at = what.find(tmp); at != std::string::npos; at = what.find(tmp, at + path.size()))
+    what.replace(at, tmp.size(), path);
+  if (what.find(path) == std::string::npos) what = path + ": " + what;
+  return what;
+}
+
+void remove_temporaries_on_signals() {
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, on_signal);
+  // Past a file size limit (ulimit -f) a write fails with EFBIG, reported as any
+  // failed write, instead of the signal ending the process mid-file.
+  std::signal(SIGXFSZ, SIG_IGN);
+}
+
+Temporary::Temporary(std::string path) : path_(std::move(path)), tmp_(temporary_path_for(path_)) {
+  const std::filesystem::path folder = std::filesystem::path(path_).parent_path();
+  std::error_code ec;
+  if (!folder.empty()) std::filesystem::create_directories(folder, ec);  // (else the write names the problem)
+  remove_stale_temporaries(path_);
+  slot_ = register_temporary(tmp_);
+}
+
+Temporary::~Temporary() { discard(); }
+
+void Temporary::sync() const {
+  const int fd = ::open(tmp_.c_str(), O_RDONLY | O_CLOEXEC);
+  const bool synced = fd >= 0 && (::fsync(fd) == 0 || errno == EINVAL || errno == EROFS);
+  const int error = errno;
+  if (fd >= 0) ::close(fd);
+  if (!synced) throw std::runtime_error(path_ + ": cannot write the file: " + std::strerror(error));
+}
+
+void Temporary::commit() {
+  if (done_) return;
+  try {
+    sync();
+    rename_into_place(tmp_, path_);
+  } catch (...) {
+    discard();
+    throw;
+  }
+  done_ = true;
+  unregister_temporary(slot_);
+}
+
+void Temporary::discard() {
+  if (done_) return;
+  done_ = true;
+  remove_quietly(tmp_);
+  unregister_temporary(slot_);
+}
+
+CheckedFile::CheckedFile(const std::string& file, const std::string& output) : output_(output) {
+  fd_ = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd_ < 0) fail(errno);
+}
+
+CheckedFile::~CheckedFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void CheckedFile::fail(int error) {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  throw std::runtime_error(output_ + ": cannot write the file: " + std::strerror(error));
+}
+
+void CheckedFile::write(std::string_view bytes) {
+  while (!bytes.empty()) {
+    const ssize_t n = ::write(fd_, bytes.data(), bytes.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) fail(n < 0 ? errno : ENOSPC);
+    bytes.remove_prefix(size_t(n));
+  }
+}
+
+void CheckedFile::close() {
+  if (fd_ < 0) return;
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) fail(errno);
+}
+
+void write_file(const std::string& path, std::string_view bytes) {
+  Temporary tmp(path);
+  CheckedFile out(tmp.path(), path);
+  out.write(bytes);
+  out.close();
+  tmp.commit();
+}
+
+const std::string& OutputSet::temporary(const std::string& path) {
+  files_.push_back(std::make_unique<Temporary>(path));
+  return files_.back()->path();
+}
+
+void OutputSet::write(const std::string& path, std::string_view bytes) {
+  CheckedFile out(temporary(path), path);
+  out.write(bytes);
+  out.close();
+}
+
+void OutputSet::commit() {
+  for (const auto& f : files_) f->sync();  // a full disk shows before anything is in place
+  for (size_t i = 0; i < files_.size(); ++i) {
+    try {
+      files_[i]->commit();
+    } catch (...) {  // take back what is already in place
+      for (size_t k = 0; k < i; ++k) remove_quietly(files_[k]->output());
+      throw;
+    }
+  }
+}
+
+}  // namespace shadetlm::core
