@@ -1,4 +1,4 @@
-// Textures from image files (the io component): PNG and JPEG through stb, EXR.
+// Textures from image files (the io component): PNG through libpng, JPEG through stb, EXR.
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -12,11 +12,14 @@
 
 #include "shadetlm/core/input_error.hpp"
 #include "shadetlm/core/input_file.hpp"
+#include "shadetlm/core/png_io.hpp"
 #include "shadetlm/core/texture.hpp"
 
 namespace shadetlm::core {
 
 namespace {
+constexpr uint64_t kMaxTexels = uint64_t(1) << 28;  // an image's, of any format (4 GiB as float RGBA)
+
 // The channels R, G, B, A (or Y as grey) of an EXR as float texels: channels that are
 // missing read 0 (A: 1). A tiled, mip-mapped file gives its levels 1 … in `mips`.
 Texture read_exr_texture(const std::string& path) {
@@ -31,7 +34,7 @@ Texture read_exr_texture(const std::string& path) {
   auto read_level = [&](auto& file, int width, int height, Imath::Box2i window, auto read) {
     Texture l;
     l.width = width, l.height = height;
-    if (width <= 0 || height <= 0 || size_t(width) * size_t(height) > (size_t(1) << 28))
+    if (width <= 0 || height <= 0 || uint64_t(width) * uint64_t(height) > kMaxTexels)
       throw std::runtime_error("the image size " + std::to_string(width) + "×" + std::to_string(height) +
                                " is out of range");
     l.texels.assign(size_t(width) * height, glm::vec4(0, 0, 0, 1));
@@ -81,8 +84,16 @@ Texture load_texture_file(const std::string& path) {
     } catch (const std::exception& e) {
       throw InputError(path, "", std::string("cannot read the EXR image: ") + e.what());
     }
-  } else if (ends_with(".png") || ends_with(".jpg") || ends_with(".jpeg")) {
+  } else if (ends_with(".png")) {
+    t = read_png(path, kMaxTexels);
+    t.srgb = true;  // 8- and 16-bit images hold display-encoded colours
+  } else if (ends_with(".jpg") || ends_with(".jpeg")) {
     int channels = 0;
+    if (!stbi_info(path.c_str(), &t.width, &t.height, &channels))
+      throw InputError(path, "", std::string("cannot read the image: ") + stbi_failure_reason());
+    if (uint64_t(t.width) * uint64_t(t.height) > kMaxTexels)
+      throw InputError(path, "", "the image size " + std::to_string(t.width) + "x" + std::to_string(t.height) +
+                                     " is more than " + std::to_string(kMaxTexels) + " texels");
     std::unique_ptr<stbi_us, void (*)(void*)> data(
         stbi_load_16(path.c_str(), &t.width, &t.height, &channels, 4), stbi_image_free);
     if (!data)

@@ -10,7 +10,8 @@ packages=(
   libopenexr-dev      # frames
   catch2              # tests (v2)
   libassimp-dev       # meshes
-  libstb-dev          # PNG/JPEG in and out
+  libstb-dev          # JPEG in, PNG out
+  libpng-dev          # PNG in: the reference decoder (CRCs, palettes checked)
   nlohmann-json3-dev  # scene files
   libcli11-dev        # command line
   valgrind            # scripts/bench.sh: instruction counts
