@@ -17,6 +17,7 @@ Command add_bench_command(CLI::App& app) {
   opt->add_to(*cmd);
   return {cmd, [opt]() {
             const core::Scene scene = opt->load();
+            take_run_memory(scene, true, false, 0);
             modules::render_loop(scene);  // warm-up
             const modules::RenderResult first = modules::render_loop(scene);
             const modules::RenderResult systemc = modules::render_systemc(scene);

@@ -53,6 +53,16 @@ void add_frame(core::OutputSet& outputs, const core::Frame& frame, const std::st
 // folder or special file, and is neither another output nor an input (InputError).
 void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
                    const std::vector<std::string>& inputs);
+// The memory a run will take beyond its scene (app/memory_estimate.cpp): the pipeline's
+// frame and buffers and the maps its blocks build, the golden model's image, a trace.
+// take_run_memory counts it against the budget, naming the field of the largest part.
+struct MemoryNeed {
+  uint64_t bytes;
+  std::string field;
+};
+std::vector<MemoryNeed> run_needs(const core::Scene& scene, bool pipeline, bool golden, uint64_t traced_pixels);
+void take_run_memory(const core::Scene& scene, bool pipeline, bool golden, uint64_t traced_pixels);
+
 // An output the command always writes: an empty path is refused.
 void require_output(const std::string& option, const std::string& path);
 

@@ -6,6 +6,7 @@
 
 #include "app/commands.hpp"
 #include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/memory_budget.hpp"
 #include "shadetlm/core/output.hpp"
 #include "shadetlm/core/version.hpp"
 
@@ -25,6 +26,11 @@ int main(int argc, char** argv) {
   CLI::App app{"shadetlm: a SystemC/TLM-2.0 model of a per-pixel shading pipeline"};
   app.set_version_flag("--version", core::kVersion);
   app.require_subcommand(1);
+  std::string max_memory;
+  app.add_option("--max-memory", max_memory,
+                 "memory a run may take, e.g. 8G or 512M (default: half the machine's); given before or after the "
+                 "subcommand");
+  app.fallthrough();  // (so that `render --max-memory 8G` reaches it)
   std::vector<app::Command> commands = {app::add_render_command(app), app::add_reference_command(app),
                                         app::add_compare_command(app), app::add_bench_command(app),
                                         app::add_precompute_command(app), app::add_parallax_bench_command(app),
@@ -35,11 +41,16 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {
+    if (!max_memory.empty()) core::MemoryBudget::process().set_limit(core::parse_bytes(max_memory, "--max-memory"));
     for (const auto& command : commands)
       if (command.cli->parsed()) return command.run();
   } catch (const core::InputError& e) {
     std::cerr << "shadetlm: " << e.what() << "\n";
     return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "shadetlm: out of memory: an allocation failed below the run's --max-memory budget (a limit such as "
+                 "ulimit -v, or the machine's memory in use elsewhere)\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "shadetlm: " << e.what() << "\n";
     return 1;

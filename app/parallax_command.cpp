@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "shadetlm/core/memory_budget.hpp"
 #include "shadetlm/core/input_error.hpp"
 #include "shadetlm/core/parallax_map.hpp"
 #include "shadetlm/core/version.hpp"
@@ -74,29 +75,27 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
                       check_outputs({{"--output", opt->output}}, {opt->height});
                       const core::Texture map = core::load_texture_file(opt->height);
                       const core::HeightField f = core::height_field(map, opt->height, "");
+                      const uint64_t volume = uint64_t(f.width) * uint64_t(f.height) * uint64_t(opt->slices) * 4;
+                      core::MemoryBudget::process().take(k == "conemap" ? volume / uint64_t(opt->slices) * 4
+                                                         : volume * (k == "refinedmap" ? 2 : 1),
+                                                         opt->height, "--slices");
                       const auto start = std::chrono::steady_clock::now();
                       double seconds = 0;
                       auto stamp = [&](std::map<std::string, std::string>& params) {
                         params["shadetlm:version"] = core::kVersion;
                         params["shadetlm:height"] = opt->height;
                       };
-                      try {
-                        if (k == "conemap") {
-                          core::ConeMap m = core::cone_map(f, opt->slices, opt->levels > 0 ? opt->levels : 4 * opt->slices);
-                          seconds = seconds_since(start);
-                          stamp(m.params);
-                          core::write_cone_map(opt->output, m);
-                        } else {
-                          core::VolumeMap m = core::distance_map(f, opt->slices);
-                          if (k == "refinedmap") m = core::refined_map(f, m, opt->refined);
-                          seconds = seconds_since(start);
-                          stamp(m.params);
-                          core::write_volume_map(opt->output, m, k == "refinedmap" ? "refined" : "distance");
-                        }
-                      } catch (const core::InputError&) {
-                        throw;
-                      } catch (const std::exception& e) {
-                        throw core::InputError(opt->output, "--output", e.what());
+                      if (k == "conemap") {
+                        core::ConeMap m = core::cone_map(f, opt->slices, opt->levels > 0 ? opt->levels : 4 * opt->slices);
+                        seconds = seconds_since(start);
+                        stamp(m.params);
+                        core::write_cone_map(opt->output, m);
+                      } else {
+                        core::VolumeMap m = core::distance_map(f, opt->slices);
+                        if (k == "refinedmap") m = core::refined_map(f, m, opt->refined);
+                        seconds = seconds_since(start);
+                        stamp(m.params);
+                        core::write_volume_map(opt->output, m, k == "refinedmap" ? "refined" : "distance");
                       }
                       std::cout << "precompute " << k << ": " << opt->height << " (" << f.width << "x" << f.height
                                 << "), " << opt->slices << " slices, " << seconds << " s\n  wrote " << opt->output

@@ -76,19 +76,15 @@ Command add_precompute_command(CLI::App& app) {
             }
             const std::vector<core::Texture> levels = core::mip_levels(base, !opt->keep_mip_lengths);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            try {
-              core::write_mip_chain(opt->output, base, levels,
-                                    {{"shadetlm:version", core::kVersion},
-                                     {"shadetlm:normalmap.form", form},
-                                     {"shadetlm:normalmap.height", opt->height},
-                                     {"shadetlm:normalmap.scale", std::to_string(opt->scale)},
-                                     {"shadetlm:normalmap.k", form == "square" ? std::to_string(opt->k) : "-"},
-                                     {"shadetlm:normalmap.surface", opt->surface},
-                                     {"shadetlm:normalmap.wrap", opt->wrap},
-                                     {"shadetlm:normalmap.renormalized", opt->keep_mip_lengths ? "no" : "yes"}});
-            } catch (const std::exception& e) {
-              throw core::InputError(opt->output, "--output", e.what());
-            }
+            core::write_mip_chain(opt->output, base, levels,
+                                  {{"shadetlm:version", core::kVersion},
+                                   {"shadetlm:normalmap.form", form},
+                                   {"shadetlm:normalmap.height", opt->height},
+                                   {"shadetlm:normalmap.scale", std::to_string(opt->scale)},
+                                   {"shadetlm:normalmap.k", form == "square" ? std::to_string(opt->k) : "-"},
+                                   {"shadetlm:normalmap.surface", opt->surface},
+                                   {"shadetlm:normalmap.wrap", opt->wrap},
+                                   {"shadetlm:normalmap.renormalized", opt->keep_mip_lengths ? "no" : "yes"}});
             std::cout << "precompute normalmap: " << opt->height << " (" << height.width << "x" << height.height
                       << "), " << form << " form, " << levels.size() + 1 << " levels, " << seconds << " s\n"
                       << "  wrote " << opt->output << "\n";

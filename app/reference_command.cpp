@@ -21,6 +21,7 @@ Command add_reference_command(CLI::App& app) {
             const core::Scene scene = opt->scene.load();
             require_output("--output", opt->output);
             check_outputs({{"--output", opt->output}, {"--preview", opt->preview}}, scene.inputs);
+            take_run_memory(scene, false, true, 0);
             const auto start = std::chrono::steady_clock::now();
             const reference::Image image = reference::render(scene);
             const double seconds =

@@ -149,6 +149,11 @@ void check_before_simulation(const RenderOptions& opt, const core::Scene& scene,
                  {"--timeline", inspect.timeline},
                  {"--timing-log", opt.timing_log}},
                 scene.inputs);
+  const modules::TraceRegion& r = inspect.region;
+  const uint64_t traced = inspect.vcd.empty() && inspect.timeline.empty() ? 0
+                          : inspect.region_given ? uint64_t(r.x1 - r.x0 + 1) * uint64_t(r.y1 - r.y0 + 1)
+                                                 : uint64_t(scene.camera.width) * uint64_t(scene.camera.height);
+  take_run_memory(scene, true, opt.compare, traced);
   // The log is kept in memory during the run (about 100 bytes a pixel and block): for
   // the small frames the timing check is for.
   constexpr int64_t kMaxLoggedPixels = 1 << 20;

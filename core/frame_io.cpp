@@ -10,7 +10,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
-#include <stb_image_write.h>
+#include <png.h>
 
 #include "shadetlm/core/input_file.hpp"
 #include "shadetlm/core/frame.hpp"
@@ -65,14 +65,24 @@ Frame read_exr(const std::string& path) {
   }
 }
 
-// An 8-bit RGB PNG in memory (written with write_file, whose writes are checked: stb's
-// own file writer does not check them).
+// An 8-bit RGB PNG in memory, through libpng (its errors are returned, where stb's
+// encoder asserts when an allocation fails), to write with checked writes.
 std::string encode_png(int width, int height, const std::vector<unsigned char>& rgb) {
-  std::string bytes;
-  auto append = [](void* to, void* data, int size) { static_cast<std::string*>(to)->append(static_cast<char*>(data), size_t(size)); };
-  if (!stbi_write_png_to_func(append, &bytes, width, height, 3, rgb.data(), width * 3))
-    throw std::runtime_error("cannot encode the PNG");
-  return bytes;
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = png_uint_32(width), image.height = png_uint_32(height);
+  image.format = PNG_FORMAT_RGB;
+  png_alloc_size_t size = 0;  // first its size, then the bytes
+  if (png_image_write_get_memory_size(image, size, 0, rgb.data(), 0, nullptr)) {
+    std::string bytes(size, '\0');
+    if (png_image_write_to_memory(&image, bytes.data(), &size, 0, rgb.data(), 0, nullptr)) {
+      bytes.resize(size);
+      return bytes;
+    }
+  }
+  const std::string why = image.message;
+  png_image_free(&image);
+  throw std::runtime_error("cannot encode the PNG: " + why);
 }
 
 std::string png_preview(const Frame& frame) {

@@ -55,8 +55,12 @@ void remove_stale_temporaries(const std::string& path) {
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string pid = name.substr(prefix.size());
-    if (pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
+    // "<pid>", or "<pid>.tmp.<pid>…" (a writer's own temporary of one)
+    const std::string pid = name.substr(prefix.size(), name.find('.', prefix.size()) - prefix.size());
+    const std::string rest = name.substr(prefix.size() + pid.size());
+    if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
+    if (!rest.empty() && (rest.compare(0, 5, ".tmp.") != 0 || rest.find_first_not_of(".tmp0123456789") != std::string::npos))
+      continue;
     if (::kill(pid_t(std::stol(pid)), 0) == 0 || errno != ESRCH) continue;  // still running
     if (fs::remove(it->path(), ec))
       std::cerr << "shadetlm: removed " << it->path().string() << ", left by a run that was killed (process "

@@ -10,6 +10,7 @@
 #include <png.h>
 
 #include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/memory_budget.hpp"
 #include "shadetlm/core/png_io.hpp"
 
 namespace shadetlm::core {
@@ -100,12 +101,22 @@ Texture read_png(const std::string& path, uint64_t max_texels) {
   struct Owner {
     std::vector<unsigned char> pixels;
     uint64_t max_texels;
+    bool refused = false;  // by its size
   } owner{{}, max_texels};
   auto room = [](void* o, Decode& d, size_t row_bytes) -> unsigned char* {
     auto& own = *static_cast<Owner*>(o);
     if (uint64_t(d.width) * d.height > own.max_texels) {
       std::snprintf(d.error, sizeof d.error, "the image size %ux%u is more than %llu texels", unsigned(d.width),
                     unsigned(d.height), static_cast<unsigned long long>(own.max_texels));
+      own.refused = true;
+      return nullptr;
+    }
+    // The decoded rows and the float texels made of them.
+    const std::string why = MemoryBudget::process().claim((row_bytes + kDecodedTexelBytes * d.width) * d.height);
+    if (!why.empty()) {
+      std::snprintf(d.error, sizeof d.error, "the image is %ux%u: %s", unsigned(d.width), unsigned(d.height),
+                    why.c_str());
+      own.refused = true;
       return nullptr;
     }
     own.pixels.resize(row_bytes * d.height);
@@ -114,7 +125,8 @@ Texture read_png(const std::string& path, uint64_t max_texels) {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
   if (!file) throw InputError(path, "", "cannot open the image");
   Decode d;
-  if (!decode(file.get(), d, room, &owner)) throw InputError(path, "", std::string("not a valid PNG: ") + d.error);
+  if (!decode(file.get(), d, room, &owner))
+    throw InputError(path, "", (owner.refused ? std::string() : std::string("not a valid PNG: ")) + d.error);
   Texture t;
   t.width = int(d.width), t.height = int(d.height);
   t.texels.resize(size_t(d.width) * d.height);

@@ -11,6 +11,7 @@
 
 #include "shadetlm/core/bump_map.hpp"
 #include "shadetlm/core/input_file.hpp"
+#include "shadetlm/core/memory_budget.hpp"
 #include "shadetlm/core/json_reader.hpp"
 #include "shadetlm/core/mesh_io.hpp"
 
@@ -129,6 +130,8 @@ Texture read_texture(JsonReader r, const std::string& name, const std::string& b
   } else {
     ProceduralParams p;
     p.size = r.ivec2("size", glm::ivec2(256, 256), 1, 8192);
+    const std::string why = MemoryBudget::process().claim(uint64_t(p.size.x) * uint64_t(p.size.y) * 16);
+    if (!why.empty()) r.fail("size", why);
     if (r.has("cells") && r.raw("cells").is_number_integer())
       p.cells = glm::ivec2(r.integer("cells", std::nullopt, 1, 4096));
     else
@@ -156,6 +159,13 @@ Texture read_texture(JsonReader r, const std::string& name, const std::string& b
   return t;
 }
 
+// A tessellated primitive's memory (a grid of m × n quads), counted before it is built.
+void take_mesh_memory(JsonReader& r, const std::string& field, int m, int n) {
+  const uint64_t vertices = uint64_t(m + 1) * uint64_t(n + 1), triangles = 2 * uint64_t(m) * uint64_t(n);
+  const std::string why = MemoryBudget::process().claim(mesh_bytes(vertices, triangles));
+  if (!why.empty()) r.fail(field, why);
+}
+
 Mesh read_shape(JsonReader& r, const std::string& shape, const std::string& base_dir) {
   if (shape == "plane") {
     const glm::dvec2 size = r.vec2("size", glm::dvec2(2, 2));
@@ -164,21 +174,32 @@ Mesh read_shape(JsonReader& r, const std::string& shape, const std::string& base
     const glm::dvec2 repeat = r.vec2("uv_repeat", glm::dvec2(1, 1));
     if (!(repeat.x > 0 && repeat.y > 0 && repeat.x <= 1e4 && repeat.y <= 1e4))
       r.fail("uv_repeat", "must lie in (0, 1e4]");
-    return make_plane(size, r.ivec2("tessellation", glm::ivec2(1, 1), 1, 2048), repeat);
+    const glm::ivec2 tessellation = r.ivec2("tessellation", glm::ivec2(1, 1), 1, 2048);
+    take_mesh_memory(r, "tessellation", tessellation.x, tessellation.y);
+    return make_plane(size, tessellation, repeat);
   }
-  if (shape == "sphere")
-    return make_sphere(r.number("radius", 1.0, kMinLength, kMaxLength), r.integer("segments", 48, 3, 2048),
-                       r.integer("rings", 24, 2, 2048));
+  if (shape == "sphere") {
+    const double radius = r.number("radius", 1.0, kMinLength, kMaxLength);
+    const int segments = r.integer("segments", 48, 3, 2048), rings = r.integer("rings", 24, 2, 2048);
+    take_mesh_memory(r, "segments", segments, rings);
+    return make_sphere(radius, segments, rings);
+  }
   if (shape == "torus") {
     double major = r.number("major_radius", 1.0, kMinLength, kMaxLength);
     double minor = r.number("minor_radius", 0.35, kMinLength, kMaxLength);
     if (minor >= major) r.fail("minor_radius", "must be smaller than major_radius");
-    return make_torus(major, minor, r.integer("segments", 48, 3, 2048), r.integer("sides", 24, 3, 2048));
+    const int segments = r.integer("segments", 48, 3, 2048), sides = r.integer("sides", 24, 3, 2048);
+    take_mesh_memory(r, "segments", segments, sides);
+    return make_torus(major, minor, segments, sides);
   }
   if (shape == "cube") return make_cube(r.number("size", 1.0, kMinLength, kMaxLength));
   const std::string file = resolve(base_dir, r.string("file"));
   try {
-    return load_mesh_file(file);
+    Mesh mesh = load_mesh_file(file);
+    const std::string why =
+        MemoryBudget::process().claim(mesh_bytes(mesh.vertex_count(), mesh.triangles.size()));
+    if (!why.empty()) r.fail("file", why);
+    return mesh;
   } catch (const InputError& e) {
     r.fail("file", e.what());
   }

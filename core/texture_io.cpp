@@ -12,6 +12,7 @@
 
 #include "shadetlm/core/input_error.hpp"
 #include "shadetlm/core/input_file.hpp"
+#include "shadetlm/core/memory_budget.hpp"
 #include "shadetlm/core/png_io.hpp"
 #include "shadetlm/core/texture.hpp"
 
@@ -37,6 +38,8 @@ Texture read_exr_texture(const std::string& path) {
     if (width <= 0 || height <= 0 || uint64_t(width) * uint64_t(height) > kMaxTexels)
       throw std::runtime_error("the image size " + std::to_string(width) + "×" + std::to_string(height) +
                                " is out of range");
+    const std::string why = MemoryBudget::process().claim(uint64_t(width) * uint64_t(height) * kDecodedTexelBytes);
+    if (!why.empty()) throw std::runtime_error("the image is " + std::to_string(width) + "x" + std::to_string(height) + ": " + why);
     l.texels.assign(size_t(width) * height, glm::vec4(0, 0, 0, 1));
     Imf::FrameBuffer fb;
     char* origin = reinterpret_cast<char*>(l.texels.data()) -
@@ -94,6 +97,7 @@ Texture load_texture_file(const std::string& path) {
     if (uint64_t(t.width) * uint64_t(t.height) > kMaxTexels)
       throw InputError(path, "", "the image size " + std::to_string(t.width) + "x" + std::to_string(t.height) +
                                      " is more than " + std::to_string(kMaxTexels) + " texels");
+    MemoryBudget::process().take(uint64_t(t.width) * uint64_t(t.height) * (kDecodedTexelBytes + 8), path, "");
     std::unique_ptr<stbi_us, void (*)(void*)> data(
         stbi_load_16(path.c_str(), &t.width, &t.height, &channels, 4), stbi_image_free);
     if (!data)

@@ -10,7 +10,7 @@ packages=(
   libopenexr-dev      # frames
   catch2              # tests (v2)
   libassimp-dev       # meshes
-  libstb-dev          # JPEG in, PNG out
+  libstb-dev          # JPEG in
   libpng-dev          # PNG in: the reference decoder (CRCs, palettes checked)
   nlohmann-json3-dev  # scene files
   libcli11-dev        # command line
