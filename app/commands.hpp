@@ -29,9 +29,16 @@ Command add_timing_check_command(CLI::App& app);
 // the function that runs it when it was the one parsed.
 void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, std::function<int()>>>& runs);
 
+// A numeric option's check: a finite number in [min, max] (CLI::Range lets NaN through,
+// and every comparison with it is false). For lists, each element.
+CLI::Validator finite_in(double min, double max);
+// A path or text option: if given, not empty (an empty one would be taken as not given).
+extern const CLI::Validator kNotEmpty;
+
 // Shared by the rendering commands.
 struct SceneOptions {
   std::string scene;                 // empty: the built-in demo
+  bool given = false;                // a scene argument was given (an empty one is refused)
   std::vector<std::string> overrides;  // --set key=value
   void add_to(CLI::App& cmd);
   core::Scene load() const;  // and its pipeline settings checked
@@ -62,6 +69,14 @@ struct MemoryNeed {
 };
 std::vector<MemoryNeed> run_needs(const core::Scene& scene, bool pipeline, bool golden, uint64_t traced_pixels);
 void take_run_memory(const core::Scene& scene, bool pipeline, bool golden, uint64_t traced_pixels);
+
+// Non-finite values that reached a frame (replaced by 0 before it was written): said on
+// stderr, and the exit status 3 unless the user accepts them (--allow-nonfinite).
+// replace_nonfinite does the replacing for a frame made outside the pipeline (Z keeps
+// its +inf, the depth of no surface).
+uint64_t replace_nonfinite(core::Frame& frame);
+int nonfinite_status(uint64_t replaced, bool allowed);
+constexpr int kExitNonfinite = 3;
 
 // An output the command always writes: an empty path is refused.
 void require_output(const std::string& option, const std::string& path);

@@ -1,6 +1,9 @@
 #include <filesystem>
+#include <iostream>
 
 #include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 #include <fcntl.h>
@@ -15,13 +18,15 @@
 namespace shadetlm::app {
 
 void SceneOptions::add_to(CLI::App& cmd) {
-  cmd.add_option("scene", scene, "scene file (JSON, docs/scene-format.md); the built-in demo if omitted");
+  cmd.add_option("scene", scene, "scene file (JSON, docs/scene-format.md); the built-in demo if omitted")
+      ->each([this](const std::string&) { given = true; });
   cmd.add_option("--set", overrides, "override a scene field: key=value, e.g. pipeline.normalize.mode=exact")
       ->take_all()
       ->allow_extra_args(false);  // `--set a=1 scene.json`: the scene is no override
 }
 
 core::Scene SceneOptions::load() const {
+  if (scene.empty() && given) throw core::InputError("", "scene", "an empty path (omit it for the built-in demo)");
   core::Scene s = scene.empty() ? core::load_demo_scene(overrides) : core::load_scene(scene, overrides);
   settings_of(s);  // bad pipeline settings stop every command, not only render
   return s;
@@ -82,10 +87,42 @@ bool same_file(const std::string& a, const std::string& b) {
   namespace fs = std::filesystem;
   std::error_code ec1, ec2;
   if (fs::equivalent(a, b, ec1)) return true;  // both exist: links included
-  const fs::path ca = fs::weakly_canonical(a, ec1), cb = fs::weakly_canonical(b, ec2);
+  const fs::path ca = fs::weakly_canonical(fs::absolute(a), ec1), cb = fs::weakly_canonical(fs::absolute(b), ec2);
   return !ec1 && !ec2 && ca == cb;
 }
 }  // namespace
+
+const CLI::Validator kNotEmpty([](std::string& text) { return text.empty() ? std::string("is empty") : std::string(); },
+                                "NOT EMPTY");
+
+CLI::Validator finite_in(double min, double max) {
+  return CLI::Validator(
+      [min, max](std::string& text) {
+        char* end = nullptr;
+        const double x = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(x))
+          return std::string("must be a finite number");
+        if (x < min || x > max) return "must lie in [" + CLI::detail::to_string(min) + ", " + CLI::detail::to_string(max) + "]";
+        return std::string();
+      },
+      "FINITE in [" + CLI::detail::to_string(min) + ", " + CLI::detail::to_string(max) + "]");
+}
+
+uint64_t replace_nonfinite(core::Frame& frame) {
+  uint64_t replaced = 0;
+  for (auto& channel : frame.channels)
+    for (float& v : channel.values)
+      if (channel.name == "Z" ? std::isnan(v) || v == -INFINITY : !std::isfinite(v)) v = 0, ++replaced;
+  return replaced;
+}
+
+int nonfinite_status(uint64_t replaced, bool allowed) {
+  if (replaced == 0) return 0;
+  std::cerr << "shadetlm: " << (allowed ? "" : "warning: ") << replaced
+            << " NaN or infinite values reached the frame and were written as 0 (nonfinite_replaced in --stats)"
+            << (allowed ? "" : "; exit status 3 (--allow-nonfinite accepts them)") << "\n";
+  return allowed ? 0 : kExitNonfinite;
+}
 
 void require_output(const std::string& option, const std::string& path) {
   if (path.empty()) throw core::InputError(option, "", "an empty path: name the file to write");
@@ -101,7 +138,7 @@ void check_outputs(const std::vector<std::pair<std::string, std::string>>& outpu
       if (!outputs[k].second.empty() && same_file(path, outputs[k].second))
         throw core::InputError(option, path, "is also the output of " + outputs[k].first);
     for (const std::string& input : inputs)
-      if (same_file(path, input)) throw core::InputError(option, path, "is an input of this run (" + input + ")");
+      if (!input.empty() && same_file(path, input)) throw core::InputError(option, path, "is an input of this run (" + input + ")");
     std::error_code ec;
     const fs::file_status st = fs::status(path, ec);
     if (fs::is_directory(st)) throw core::InputError(option, path, "is a folder");

@@ -23,23 +23,20 @@ Command add_compare_command(CLI::App& app) {
   cmd->add_option("b", opt->b, "reference frame")->required();
   cmd->add_option("--layer", opt->compare.layers, "layers to compare (default: all present)")
       ->check(CLI::IsMember({"RGB", "Z", "N"}));
-  // NaN would make every comparison pass (or fail): thresholds are numbers ≥ 0.
-  const CLI::Validator threshold(
-      [](std::string& s) {
-        double x = std::strtod(s.c_str(), nullptr);
-        return x >= 0 && !std::isnan(x) ? std::string() : "must be a number >= 0";
-      },
-      "NUMBER>=0");
+  // NaN would make every comparison pass (or fail): thresholds are finite numbers ≥ 0.
+  const CLI::Validator threshold = finite_in(0, 1e300);
   cmd->add_option("--fail", opt->compare.fail, "a pixel fails over this absolute error")
       ->check(threshold)->capture_default_str();
   cmd->add_option("--failpercent", opt->compare.fail_percent, "the layer fails when more than this % of pixels fail")
       ->check(threshold)->capture_default_str();
   cmd->add_option("--hardfail", opt->compare.hard_fail, "the layer fails when any pixel's error is over this")
       ->check(threshold);
-  cmd->add_option("--diff", opt->diff, "write |A - B| per channel to this EXR");
+  cmd->add_option("--diff", opt->diff, "write |A - B| per channel to this EXR")
+      ->check(kNotEmpty);
   cmd->add_flag("--json", opt->json, "print the metrics as JSON");
   cmd->add_option("--images", opt->images,
-                  "write PREFIX-new.png, -reference.png, -diff.png (|A-B| x16) and -heat.png (error heat map)");
+                  "write PREFIX-new.png, -reference.png, -diff.png (|A-B| x16) and -heat.png (error heat map)")
+      ->check(kNotEmpty);
   return {cmd, [opt]() {
             const core::Frame a = core::read_exr(opt->a), b = core::read_exr(opt->b);
             const std::string& p = opt->images;

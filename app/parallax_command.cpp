@@ -46,30 +46,31 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
               : k == "refinedmap" ? "the parallax paper's refined distance map"
                                   : "a safe cone map for cone stepping");
     cmd->add_option("height", opt->height, "height map image (first channel, clamped to [0, 1])")->required();
-    cmd->add_option("-o,--output", opt->output, "EXR to write")->capture_default_str();
+    cmd->add_option("-o,--output", opt->output, "EXR to write")->capture_default_str()
+      ->check(kNotEmpty);
     cmd->add_option("--slices", opt->slices, "D: voxels across the relief's depth")
         ->capture_default_str()
-        ->check(CLI::Range(1, 256));
+        ->check(finite_in(1, 256));
     if (k == "refinedmap") {
       cmd->add_option("--min-elevation", opt->refined.min_elevation_deg,
                       "lowest admissible view elevation, degrees, in the map's space (texels across, slices down)")
           ->capture_default_str()
-          ->check(CLI::Range(0.1, 89.0));
+          ->check(finite_in(0.1, 89.0));
       cmd->add_option("--azimuths", opt->refined.azimuths, "directions around")->capture_default_str()->check(
-          CLI::Range(1, 256));
+          finite_in(1, 256));
       cmd->add_option("--elevations", opt->refined.elevations, "elevations below the vertical")
           ->capture_default_str()
-          ->check(CLI::Range(1, 64));
+          ->check(finite_in(1, 64));
       cmd->add_option("--rays-per-texel", opt->refined.rays_per_texel, "parallel rays per texel side")
           ->capture_default_str()
-          ->check(CLI::Range(1, 8));
+          ->check(finite_in(1, 8));
       cmd->add_option("--margin", opt->refined.margin, "voxels taken off every ray-derived value")
           ->capture_default_str()
-          ->check(CLI::Range(0.0, 64.0));
+          ->check(finite_in(0.0, 64.0));
     }
     if (k == "conemap")
       cmd->add_option("--levels", opt->levels, "height levels the apexes round up to (default 4·slices)")
-          ->check(CLI::Range(1, 4096));
+          ->check(finite_in(1, 4096));
     runs.push_back({cmd, [opt, k]() {
                       require_output("--output", opt->output);
                       check_outputs({{"--output", opt->output}}, {opt->height});
@@ -341,18 +342,23 @@ Command add_parallax_bench_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "parallax-bench", "every parallax tracer against the exact hit, on parallel rays over a material's height map");
   opt->scene.add_to(*cmd);
-  cmd->add_option("--material", opt->material, "the parallax material (default: the first)");
+  cmd->add_option("--material", opt->material, "the parallax material (default: the first)")
+      ->check(kNotEmpty);
   cmd->add_option("--elevations", opt->elevations, "view elevations above the surface, degrees")
       ->delimiter(',')
       ->capture_default_str()
-      ->check(CLI::Range(0.5, 89.0));  // the along-ray measures project on the sideways direction
-  cmd->add_option("--azimuth", opt->azimuth, "view azimuth from the u axis, degrees")->capture_default_str();
+      ->check(finite_in(0.5, 89.0));  // the along-ray measures project on the sideways direction
+  cmd->add_option("--azimuth", opt->azimuth, "view azimuth from the u axis, degrees")
+      ->capture_default_str()
+      ->check(finite_in(-360, 360));
   cmd->add_option("--rays", opt->rays, "rays per side (a jittered grid over the map)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 4096));
-  cmd->add_option("--json", opt->json, "write the figures as JSON");
+      ->check(finite_in(1, 4096));
+  cmd->add_option("--json", opt->json, "write the figures as JSON")
+      ->check(kNotEmpty);
   return {cmd, [opt]() {
             const core::Scene scene = opt->scene.load();
+            check_outputs({{"--json", opt->json}}, scene.inputs);
             const core::Material& mat = parallax_material(scene, opt->material);
             const core::Texture& height = scene.textures[size_t(mat.height_map)];
             const core::ParallaxSettings base = mat.parallax;

@@ -41,12 +41,14 @@ Command add_precompute_command(CLI::App& app) {
   cmd->require_subcommand(1);
   CLI::App* nm = cmd->add_subcommand("normalmap", "texture of perturbed normals from a height map (bump mapping)");
   nm->add_option("height", opt->height, "height map image (first channel; PNG or EXR, power-of-two sides)")->required();
-  nm->add_option("-o,--output", opt->output, "EXR to write (tiled, mip-mapped, float)")->capture_default_str();
-  nm->add_option("--scale", opt->scale, "height scale: F = scale · h")->capture_default_str()->check(CLI::Range(0.0, 1e6));
+  nm->add_option("-o,--output", opt->output, "EXR to write (tiled, mip-mapped, float)")->capture_default_str()
+      ->check(kNotEmpty);
+  nm->add_option("--scale", opt->scale, "height scale: F = scale · h")->capture_default_str()->check(finite_in(0.0, 1e6));
   nm->add_option("--k", opt->k, "square patch: |Pu| = |Pv| = k (square form)")->capture_default_str()->check(
-      CLI::Range(1e-6, 1e6));
+      finite_in(1e-6, 1e6));
   nm->add_option("--surface", opt->surface,
-                 "the surface whose Pu, Pv the general form needs: plane, sphere, torus or a mesh file");
+                 "the surface whose Pu, Pv the general form needs: plane, sphere, torus or a mesh file")
+      ->check(kNotEmpty);
   nm->add_option("--form", opt->form, "square (default without --surface), tangent (default with it) or object")
       ->check(CLI::IsMember({"square", "tangent", "object"}));
   nm->add_option("--wrap", opt->wrap, "border handling of the derivatives and the texture")

@@ -11,12 +11,17 @@ Command add_reference_command(CLI::App& app) {
   struct Options {
     SceneOptions scene;
     std::string output = "out/reference.exr", preview;
+    bool allow_nonfinite = false;
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("reference", "render a scene through the golden model (exact, double precision)");
   opt->scene.add_to(*cmd);
-  cmd->add_option("-o,--output", opt->output, "EXR frame to write")->capture_default_str();
-  cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview");
+  cmd->add_option("-o,--output", opt->output, "EXR frame to write")->capture_default_str()
+      ->check(kNotEmpty);
+  cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview")
+      ->check(kNotEmpty);
+  cmd->add_flag("--allow-nonfinite", opt->allow_nonfinite,
+                "exit 0 even when NaN or infinite values reached the frame (written as 0; else exit status 3)");
   return {cmd, [opt]() {
             const core::Scene scene = opt->scene.load();
             require_output("--output", opt->output);
@@ -27,6 +32,7 @@ Command add_reference_command(CLI::App& app) {
             const double seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             core::Frame frame = reference::to_frame(image);
+            const uint64_t replaced = replace_nonfinite(frame);
             describe(frame, scene, opt->scene, "reference");
             write_frame(frame, opt->output, opt->preview);
             size_t covered = 0;
@@ -35,7 +41,7 @@ Command add_reference_command(CLI::App& app) {
                       << ", " << covered << " covered pixels, " << seconds << " s\n"
                       << "  wrote " << opt->output << (opt->preview.empty() ? "" : " and " + opt->preview)
                       << "\n";
-            return 0;
+            return nonfinite_status(replaced, opt->allow_nonfinite);
           }};
 }
 

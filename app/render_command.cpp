@@ -96,7 +96,7 @@ struct RenderOptions {
   SceneOptions scene;
   std::string output = "out/frame.exr", preview, heat_map, stats, engine = "systemc";
   float heat_max = 32;
-  bool compare = false;
+  bool compare = false, allow_nonfinite = false;
   std::string vcd, region, triangles, timeline, timing_log;
 };
 
@@ -108,11 +108,22 @@ modules::Inspect inspection_of(const RenderOptions& opt, const core::Scene& scen
   if (!opt.stats.empty()) inspect.bin_cycles = 10000;  // utilization over time, in the statistics
   inspect.timeline = opt.timeline;
   inspect.timing_log = !opt.timing_log.empty();
-  if (!opt.region.empty()) parse_region(opt.region, inspect.region), inspect.region_given = true;
+  if (!opt.region.empty()) {
+    parse_region(opt.region, inspect.region), inspect.region_given = true;
+    if (inspect.region.x0 >= scene.camera.width || inspect.region.y0 >= scene.camera.height)
+      throw core::InputError("--trace-region", opt.region,
+                             "lies wholly outside the " + std::to_string(scene.camera.width) + "x" +
+                                 std::to_string(scene.camera.height) + " frame: nothing would be traced");
+  }
   if (!opt.triangles.empty()) {
     if (!inspect.region_given)
       inspect.region = {0, 0, scene.camera.width - 1, scene.camera.height - 1}, inspect.region_given = true;
     parse_triangles(opt.triangles, inspect.region);
+    uint64_t triangles = 0;
+    for (const auto& o : scene.objects) triangles += o.mesh.triangles.size();
+    if (inspect.region.triangle_first >= triangles)
+      throw core::InputError("--trace-triangles", opt.triangles,
+                             "starts past the scene's last triangle (" + std::to_string(triangles) + " triangles)");
   }
   if (!inspect.vcd.empty() && (inspect.vcd.size() < 5 || inspect.vcd.substr(inspect.vcd.size() - 4) != ".vcd"))
     throw core::InputError("--vcd", inspect.vcd, "the waveform file must end in .vcd");
@@ -246,25 +257,36 @@ Command add_render_command(CLI::App& app) {
   auto opt = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand("render", "render a scene through the SystemC/TLM-2.0 pipeline");
   opt->scene.add_to(*cmd);
-  cmd->add_option("-o,--output", opt->output, "EXR frame to write")->capture_default_str();
-  cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview");
+  cmd->add_option("-o,--output", opt->output, "EXR frame to write")->capture_default_str()
+      ->check(kNotEmpty);
+  cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview")
+      ->check(kNotEmpty);
   cmd->add_option("--heat-map", opt->heat_map,
-                  "write the parallax iterations per pixel as a heat map PNG (black 0 … white --heat-max and more)");
+                  "write the parallax iterations per pixel as a heat map PNG (black 0 … white --heat-max and more)")
+      ->check(kNotEmpty);
   cmd->add_option("--heat-max", opt->heat_max, "iterations shown white in the heat map")
       ->capture_default_str()
-      ->check(CLI::Range(1.0, 1e6));
-  cmd->add_option("--stats", opt->stats, "write statistics (time, cycles, operations, error) as JSON");
+      ->check(finite_in(1.0, 1e6));
+  cmd->add_option("--stats", opt->stats, "write statistics (time, cycles, operations, error) as JSON")
+      ->check(kNotEmpty);
   cmd->add_flag("--compare-reference", opt->compare, "also render the golden model and report the error");
+  cmd->add_flag("--allow-nonfinite", opt->allow_nonfinite,
+                "exit 0 even when NaN or infinite values reached the frame (written as 0; else exit status 3)");
   cmd->add_option("--engine", opt->engine,
                   "systemc: the TLM-2.0 model; loop: the same kernels in a plain C++ loop (no timing)")
       ->check(CLI::IsMember({"systemc", "loop"}))
       ->capture_default_str();
-  cmd->add_option("--vcd", opt->vcd, "waveforms of the blocks (VCD), with a GTKWave view (.gtkw) beside them");
-  cmd->add_option("--trace-region", opt->region, "pixels traced into the VCD and the timeline: x0,y0,x1,y1");
-  cmd->add_option("--trace-triangles", opt->triangles, "triangles traced: i..j (ids in drawing order)");
-  cmd->add_option("--timeline", opt->timeline, "transaction timeline as Chrome trace-event JSON (Perfetto)");
+  cmd->add_option("--vcd", opt->vcd, "waveforms of the blocks (VCD), with a GTKWave view (.gtkw) beside them")
+      ->check(kNotEmpty);
+  cmd->add_option("--trace-region", opt->region, "pixels traced into the VCD and the timeline: x0,y0,x1,y1")
+      ->check(kNotEmpty);
+  cmd->add_option("--trace-triangles", opt->triangles, "triangles traced: i..j (ids in drawing order)")
+      ->check(kNotEmpty);
+  cmd->add_option("--timeline", opt->timeline, "transaction timeline as Chrome trace-event JSON (Perfetto)")
+      ->check(kNotEmpty);
   cmd->add_option("--timing-log", opt->timing_log,
-                  "every pixel's start and hand-over cycle at every block, for `shadetlm timing-check`");
+                  "every pixel's start and hand-over cycle at every block, for `shadetlm timing-check`")
+      ->check(kNotEmpty);
   return {cmd, [opt]() {
             const core::Scene scene = opt->scene.load();
             const modules::Inspect inspect = inspection_of(*opt, scene);
@@ -275,7 +297,7 @@ Command add_render_command(CLI::App& app) {
             describe(r.frame, scene, opt->scene, opt->engine == "loop" ? "pipeline-loop" : "pipeline");
             write_outputs(*opt, r, stats, inspect);
             print_summary(*opt, scene, r, stats, inspect, reference_s);
-            return 0;
+            return nonfinite_status(r.nonfinite_replaced, opt->allow_nonfinite);
           }};
 }
 

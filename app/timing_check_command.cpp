@@ -16,7 +16,7 @@ Command add_timing_check_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "timing-check", "check a render's timing log against the clocked timing reference; exit 0 equal, 1 not");
   cmd->add_option("log", *log, "timing log written by `shadetlm render --timing-log`")->required();
-  cmd->add_option("--show", *show, "differences described")->capture_default_str()->check(CLI::Range(0, 1000000));
+  cmd->add_option("--show", *show, "differences described")->capture_default_str()->check(finite_in(0, 1000000));
   return {cmd, [log, show]() {
             const timing_reference::Workload w = timing_reference::read_workload(*log);
             const timing_reference::Measured m = timing_reference::run_clocked(w);

@@ -70,10 +70,11 @@ int JsonReader::integer(const std::string& key, std::optional<int> fallback, int
     fail(key, "missing (an integer is required)");
   }
   if (!v->is_number_integer()) fail(key, "expected an integer, got " + type_name(*v));
-  long long x = v->get<long long>();
+  // (an unsigned beyond long long's range reads as negative: compared as given)
+  const long long x = v->is_number_unsigned() && v->get<unsigned long long>() > uint64_t(max) ? max + 1LL
+                                                                                               : v->get<long long>();
   if (x < min || x > max)
-    fail(key, "must lie in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
-                  std::to_string(x));
+    fail(key, "must lie in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + v->dump());
   return static_cast<int>(x);
 }
 
@@ -104,7 +105,7 @@ std::string JsonReader::choice(const std::string& key, std::optional<std::string
     if (a == s) return s;
   std::string list;
   for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-  fail(key, "unknown value \"" + s + "\" (one of: " + list + ")");
+  fail(key, "unknown value \"" + printable(s) + "\" (one of: " + list + ")");
 }
 
 std::vector<double> JsonReader::numbers(const std::string& key, size_t count) {
@@ -176,10 +177,10 @@ glm::ivec2 JsonReader::ivec2(const std::string& key, std::optional<glm::ivec2> f
     const json& e = (*v)[i];
     const std::string f = key + "." + std::to_string(i);
     if (!e.is_number_integer()) fail(f, "expected an integer, got " + type_name(e));
-    long long x = e.get<long long>();
+    const long long x = e.is_number_unsigned() && e.get<unsigned long long>() > uint64_t(max) ? max + 1LL
+                                                                                               : e.get<long long>();
     if (x < min || x > max)
-      fail(f, "must lie in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
-                  std::to_string(x));
+      fail(f, "must lie in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + e.dump());
     out[i] = static_cast<int>(x);
   }
   return out;
@@ -208,25 +209,53 @@ void JsonReader::finish() const {
 }
 
 json parse_json_text(const std::string& text, const std::string& file) {
-  // nlohmann keeps the last of repeated keys; a scene must not say one thing twice.
-  std::vector<std::set<std::string>> keys;
-  std::vector<std::string> path;
-  std::string duplicate;
+  // nlohmann keeps the last of repeated keys; a scene must not say one thing twice. The
+  // levels open at the parser's position: an object's keys so far, an array's element.
+  struct Level {
+    bool array = false;
+    std::set<std::string> keys;
+    std::string key;  // the object's current member
+    long index = -1;  // the array's current element
+  };
+  std::vector<Level> levels;
+  std::string duplicate;  // its full path, "objects.0.radius"
+  auto path_to = [&](const std::string& key) {
+    std::string p;
+    for (size_t i = 0; i + 1 < levels.size(); ++i)
+      p += (p.empty() ? "" : ".") + (levels[i].array ? std::to_string(levels[i].index) : levels[i].key);
+    return p + (p.empty() ? "" : ".") + key;
+  };
   // Copying or destroying a JSON value recurses once per level: a document nested
   // thousands deep would overflow the stack. Scenes need a handful of levels.
   constexpr int kMaxDepth = 64;
   auto check = [&](int depth, json::parse_event_t event, json& parsed) {
     if (depth > kMaxDepth)
       throw InputError(file, "", "nested deeper than " + std::to_string(kMaxDepth) + " levels");
-    if (event == json::parse_event_t::object_start) {
-      keys.emplace_back();
-    } else if (event == json::parse_event_t::object_end) {
-      keys.pop_back();
-    } else if (event == json::parse_event_t::key && duplicate.empty() && !keys.empty()) {
-      if (!keys.back().insert(parsed.get<std::string>()).second) duplicate = parsed.get<std::string>();
+    const bool starts = event == json::parse_event_t::object_start || event == json::parse_event_t::array_start;
+    if ((starts || event == json::parse_event_t::value) && !levels.empty() && levels.back().array &&
+        !(event == json::parse_event_t::value && (parsed.is_object() || parsed.is_array())))
+      ++levels.back().index;  // an array's next element begins (a finished compound one is no new element)
+    if (starts) {
+      levels.emplace_back();
+      levels.back().array = event == json::parse_event_t::array_start;
+    } else if (event == json::parse_event_t::object_end || event == json::parse_event_t::array_end) {
+      levels.pop_back();
+    } else if (event == json::parse_event_t::key && !levels.empty()) {
+      Level& object = levels.back();
+      object.key = parsed.get<std::string>();
+      if (!object.keys.insert(object.key).second && duplicate.empty()) duplicate = path_to(object.key);
     }
     return true;
   };
+  // Where the parser is: the path of the member or element it reads (for its errors).
+  auto here = [&] {
+    if (levels.empty()) return std::string();
+    Level& last = levels.back();
+    return path_to(last.array ? std::to_string(last.index + 1) : last.key);
+  };
+  const size_t nul = text.find('\0');
+  if (nul != std::string::npos)
+    throw InputError(file, "", "holds a NUL byte at byte " + std::to_string(nul) + " (not a JSON text)");
   try {
     json doc = json::parse(text, check);
     if (!duplicate.empty()) throw InputError(file, duplicate, "the key is given twice in one object");
@@ -244,7 +273,7 @@ json parse_json_text(const std::string& text, const std::string& file) {
   } catch (const json::exception& e) {  // e.g. a number literal too large for a double
     std::string what = e.what();
     auto pos = what.find("] ");
-    throw InputError(file, "", "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos + 2)));
+    throw InputError(file, here(), "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos + 2)));
   }
 }
 

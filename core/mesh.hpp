@@ -17,6 +17,7 @@ struct Mesh {
   std::vector<glm::dvec4> tangents;
   std::vector<glm::dvec2> uvs;
   std::vector<glm::u32vec3> triangles;
+  bool uvs_given = true;  // false: a file without texture coordinates (its uvs are 0)
 
   size_t vertex_count() const { return positions.size(); }
   // Adds one vertex and returns its index.

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "shadetlm/core/input_file.hpp"
 #include "shadetlm/core/mesh_io.hpp"
 
@@ -19,12 +20,14 @@ Mesh load_mesh_file(const std::string& path) {
   const aiScene* scene = importer.ReadFile(
       path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
                 aiProcess_CalcTangentSpace | aiProcess_PreTransformVertices |
-                aiProcess_SortByPType | aiProcess_FindDegenerates | aiProcess_FindInvalidData |
-                aiProcess_ValidateDataStructure);
+                aiProcess_SortByPType | aiProcess_FindDegenerates | aiProcess_ValidateDataStructure);
+  // (not aiProcess_FindInvalidData: it drops NaN normals and texture coordinates
+  // silently, which are refused here instead)
   if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
     throw InputError(path, "", std::string("cannot load the mesh: ") + importer.GetErrorString());
 
   Mesh out;
+  out.uvs_given = false;
   for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
     const aiMesh* m = scene->mMeshes[mi];
     if (!(m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
@@ -34,10 +37,12 @@ Mesh load_mesh_file(const std::string& path) {
       glm::dvec3 n = m->HasNormals()
                          ? glm::dvec3(m->mNormals[v].x, m->mNormals[v].y, m->mNormals[v].z)
                          : glm::dvec3(0, 0, 1);
+      if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z))
+        throw InputError(path, "", "a vertex normal is NaN or infinite");
       if (!(glm::length(n) > 0)) n = glm::dvec3(0, 0, 1);  // a lone vertex has no normal
       n = glm::normalize(n);
       glm::dvec2 uv(0, 0);
-      if (m->HasTextureCoords(0)) uv = {m->mTextureCoords[0][v].x, m->mTextureCoords[0][v].y};
+      if (m->HasTextureCoords(0)) uv = {m->mTextureCoords[0][v].x, m->mTextureCoords[0][v].y}, out.uvs_given = true;
       glm::dvec4 t(any_tangent(n), 1.0);
       if (m->HasTangentsAndBitangents()) {
         glm::dvec3 tu(m->mTangents[v].x, m->mTangents[v].y, m->mTangents[v].z);
@@ -73,6 +78,11 @@ Mesh load_mesh_file(const std::string& path) {
         throw InputError(path, "", "vertex coordinates must lie within ±1e6");
   }
   if (out.triangles.empty()) throw InputError(path, "", "the file holds no triangles");
+  const bool some_area = std::any_of(out.triangles.begin(), out.triangles.end(), [&](const glm::u32vec3& t) {
+    const glm::dvec3& a = out.positions[t.x];
+    return glm::length(glm::cross(out.positions[t.y] - a, out.positions[t.z] - a)) > 0;
+  });
+  if (!some_area) throw InputError(path, "", "no triangle has an area (every one is a line or a point)");
   return out;
 }
 

@@ -2,6 +2,7 @@
 // verifies what the format promises, where stb_image does not: every chunk's CRC
 // (ancillary chunks too: an error, not a warning), the size before anything is decoded,
 // and — checked here — that every pixel of a paletted image indexes its palette.
+#include <algorithm>
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
@@ -100,14 +101,25 @@ float eight_bit(unsigned v) { return float(v * 257u) / 65535.0f; }
 Texture read_png(const std::string& path, uint64_t max_texels) {
   struct Owner {
     std::vector<unsigned char> pixels;
-    uint64_t max_texels;
+    uint64_t max_texels, file_bytes;
     bool refused = false;  // by its size
-  } owner{{}, max_texels};
+  } owner{{}, max_texels, 0};
   auto room = [](void* o, Decode& d, size_t row_bytes) -> unsigned char* {
     auto& own = *static_cast<Owner*>(o);
     if (uint64_t(d.width) * d.height > own.max_texels) {
       std::snprintf(d.error, sizeof d.error, "the image size %ux%u is more than %llu texels", unsigned(d.width),
                     unsigned(d.height), static_cast<unsigned long long>(own.max_texels));
+      own.refused = true;
+      return nullptr;
+    }
+    // Deflate packs at most 1032 bytes into one: a file that claims more rows than its
+    // size can hold is refused before they are allocated.
+    const int channels = d.color_type == PNG_COLOR_TYPE_RGB ? 3 : d.color_type == PNG_COLOR_TYPE_RGB_ALPHA ? 4
+                         : d.color_type == PNG_COLOR_TYPE_GRAY_ALPHA ? 2 : 1;
+    const uint64_t stored = ((uint64_t(d.width) * uint64_t(channels * d.bit_depth) + 7) / 8 + 1) * d.height;
+    if (stored > own.file_bytes * 1032 + 4096) {
+      std::snprintf(d.error, sizeof d.error, "the file (%llu bytes) is too small to hold the %ux%u image it claims",
+                    static_cast<unsigned long long>(own.file_bytes), unsigned(d.width), unsigned(d.height));
       own.refused = true;
       return nullptr;
     }
@@ -124,6 +136,9 @@ Texture read_png(const std::string& path, uint64_t max_texels) {
   };
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
   if (!file) throw InputError(path, "", "cannot open the image");
+  std::fseek(file.get(), 0, SEEK_END);
+  owner.file_bytes = uint64_t(std::max(0L, std::ftell(file.get())));
+  std::rewind(file.get());
   Decode d;
   if (!decode(file.get(), d, room, &owner))
     throw InputError(path, "", (owner.refused ? std::string() : std::string("not a valid PNG: ")) + d.error);

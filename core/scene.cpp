@@ -1,5 +1,6 @@
 #include "shadetlm/core/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -103,9 +104,17 @@ glm::dmat4 read_transform(JsonReader r) {
   return glm::scale(m, scale);
 }
 
+// Colours lie in [0, 1e4] and light intensities in [0, 1e6] (docs/scene-format.md): the
+// largest product a pixel forms — intensity, light colour, material colour, texel, over
+// a point light's squared distance down to 1e-6 — stays near 1e30, far inside float32
+// (3.4e38), so that no input can put an infinity into a frame.
+constexpr double kMaxColour = 1e4, kMaxIntensity = 1e6;
+
 glm::dvec3 color(JsonReader& r, const std::string& key, glm::dvec3 fallback) {
   glm::dvec3 c = r.vec3(key, fallback);
   if (c.x < 0 || c.y < 0 || c.z < 0) r.fail(key, "colours cannot be negative");
+  if (c.x > kMaxColour || c.y > kMaxColour || c.z > kMaxColour)
+    r.fail(key, "colour components may not exceed 1e4 (their products must stay finite in float32)");
   return c;
 }
 
@@ -142,6 +151,10 @@ Texture read_texture(JsonReader r, const std::string& name, const std::string& b
     p.seed = static_cast<uint32_t>(r.integer("seed", 1, 0, 2147483647));
     if (r.has("colors")) {
       auto colors = r.vec3_list("colors", 2);
+      for (size_t k = 0; k < colors.size(); ++k)
+        if (!(glm::all(glm::greaterThanEqual(colors[k], glm::dvec3(0))) &&
+              glm::all(glm::lessThanEqual(colors[k], glm::dvec3(kMaxColour)))))
+          r.fail("colors." + std::to_string(k), "colour components lie in [0, 1e4] (products must stay finite in float32)");
       p.color_a = colors[0];
       p.color_b = colors[1];
     }
@@ -292,13 +305,16 @@ Light read_light(JsonReader r) {
                                                                             : Light::Type::Directional;
   if (l.type == Light::Type::Directional) {
     glm::dvec3 d = r.vec3("direction");
-    if (glm::length(d) < 1e-12) r.fail("direction", "the direction is zero");
-    l.direction = glm::normalize(d);
+    // Scaled by its largest component first: 1e200 on each axis is a direction too, whose
+    // length overflows.
+    const double largest = std::max({std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    if (!(largest > 0) || glm::length(d / largest) * largest < 1e-12) r.fail("direction", "the direction is zero");
+    l.direction = glm::normalize(d / largest);
   } else {
     l.position = position(r, "position", std::nullopt);
   }
   l.color = color(r, "color", glm::dvec3(1));
-  l.intensity = r.number("intensity", 1.0, 0, 1e12);
+  l.intensity = r.number("intensity", 1.0, 0, kMaxIntensity);
   r.finish();
   return l;
 }
@@ -452,7 +468,12 @@ Object read_object(JsonReader r, std::map<std::string, int>& material_index, con
   o.material = read_material_ref(r, material_index, s.materials);
   if (r.has("transform")) o.model = read_transform(r.object("transform"));
   o.cull_back = r.choice("cull", std::string("none"), {"none", "back"}) == "back";
-  if (s.materials[size_t(o.material)].path == ShadingPath::BumpObject) check_bump_object_transform(r, o.model);
+  const Material& m = s.materials[size_t(o.material)];
+  if (m.path == ShadingPath::BumpObject) check_bump_object_transform(r, o.model);
+  // Every path but untextured Phong reads the surface's texture coordinates.
+  if (!o.mesh.uvs_given && (m.path != ShadingPath::Phong || m.texture >= 0))
+    r.fail("file", "the mesh has no texture coordinates, which material \"" + m.name + "\" (" +
+                       std::string(to_string(m.path)) + (m.texture >= 0 ? ", textured" : "") + ") reads");
   r.finish();
   return o;
 }
@@ -500,7 +521,9 @@ Scene load_scene_text(const std::string& text, const std::string& name, const st
   const std::map<std::string, int> texture_index = read_textures(root, doc, base_dir, s.textures);
   std::map<std::string, int> material_index = read_materials(root, doc, texture_index, s);
 
-  for (const auto& [value, path] : root.array("objects"))
+  const auto objects = root.array("objects");
+  if (objects.empty()) root.fail("objects", "an empty array: a scene draws at least one object");
+  for (const auto& [value, path] : objects)
     s.objects.push_back(read_object(JsonReader(*value, name, path), material_index, base_dir, s));
 
   s.pipeline = read_pipeline(root, name);

@@ -31,6 +31,9 @@ Texture read_exr_texture(const std::string& path) {
   // A grey image (Y, no R) is read into R and copied to G and B: a frame buffer holds
   // one slice per channel name.
   const bool grey = header.channels().findChannel("Y") && !header.channels().findChannel("R");
+  if (!grey && !header.channels().findChannel("R") && !header.channels().findChannel("G") &&
+      !header.channels().findChannel("B"))
+    throw std::runtime_error("the image has no colour channel (R, G, B or Y)");
   const char* names[4] = {grey ? "Y" : "R", "G", "B", "A"};
   auto read_level = [&](auto& file, int width, int height, Imath::Box2i window, auto read) {
     Texture l;
@@ -111,13 +114,16 @@ Texture load_texture_file(const std::string& path) {
   }
   t.name = path;
   if (t.width <= 0 || t.height <= 0) throw InputError(path, "", "the image is empty");
+  // Texels within ±1e6 (NaN and infinity refused): products with colours and lights stay
+  // finite in float32 (docs/scene-format.md).
+  auto bounded = [](const glm::vec4& c) {
+    return std::abs(c.r) <= 1e6f && std::abs(c.g) <= 1e6f && std::abs(c.b) <= 1e6f && std::abs(c.a) <= 1e6f;
+  };
   for (const auto& c : t.texels)
-    if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b) || !std::isfinite(c.a))
-      throw InputError(path, "", "the image holds NaN or infinite values");
+    if (!bounded(c)) throw InputError(path, "", "the image holds NaN, infinite or larger than 1e6 values");
   for (const auto& level : t.mips)
     for (const auto& c : level.texels)
-      if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b) || !std::isfinite(c.a))
-        throw InputError(path, "", "a mip level holds NaN or infinite values");
+      if (!bounded(c)) throw InputError(path, "", "a mip level holds NaN, infinite or larger than 1e6 values");
   return t;
 }
 

@@ -223,7 +223,7 @@ TEST_CASE("a key given twice is rejected", "[scene][bad]") {
   std::string text = minimal().dump();
   text.insert(text.find("\"position\""), "\"near\":0.5,\"near\":0.7,");
   core::InputError e = test::scene_error(text);
-  CHECK(e.field() == "near");
+  CHECK(e.field() == "camera.near");  // its full path, not the bare key
   CHECK_THAT(e.what(), Catch::Contains("twice"));
   json doc = minimal();
   doc["pipeline"] = {{"normalize", {{"mode", "exact"}}}, {"normalize.mode", "rsqrt1"}};
