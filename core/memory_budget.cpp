@@ -25,8 +25,8 @@ uint64_t MemoryBudget::machine_default() {
 
 std::string MemoryBudget::claim(uint64_t bytes) {
   if (bytes > limit_ || counted_ > limit_ - bytes)
-    return "needs about " + format_bytes(bytes) + " of memory, which would take this run past its budget of " +
-           format_bytes(limit_) + " (" + format_bytes(counted_) + " already taken; --max-memory sets the budget)";
+    return "needs about " + format_bytes(bytes) + " of memory, past the run's budget of " + format_bytes(limit_) +
+           " (" + format_bytes(counted_) + " taken; --max-memory)";
   counted_ += bytes;
   return "";
 }
