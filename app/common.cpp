@@ -73,14 +73,22 @@ void probe_writable(const std::string& option, const std::string& path) {
   fs::path missing = fs::absolute(fs::path(path), ec), folder = missing.parent_path();
   while (!fs::exists(folder, ec) && folder != folder.root_path()) missing = folder, folder = folder.parent_path();
   if (!fs::is_directory(folder, ec)) throw core::InputError(option, path, "its folder " + folder.string() + " is a file");
-  const std::string probe = missing.string() == fs::absolute(fs::path(path), ec).string()
-                                ? core::temporary_path_for(missing.string())
-                                : missing.string();
-  const bool made = probe == missing.string() ? ::mkdir(probe.c_str(), 0777) == 0
-                                              : ::close(::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0666)) == 0;
-  const int error = errno;
-  if (!made) throw core::InputError(option, path, std::string("cannot be written: ") + std::strerror(error));
-  ::remove(probe.c_str());
+  int error = 0;
+  if (missing.string() != fs::absolute(fs::path(path), ec).string()) {  // a folder to make: try it
+    if (::mkdir(missing.c_str(), 0777) == 0) ::rmdir(missing.c_str());
+    else error = errno;
+  } else {  // a file in an existing folder: an unnamed one (nothing to leave behind if
+            // killed), or where the file system has none, the run's own temporary
+    int fd = ::open(folder.c_str(), O_TMPFILE | O_WRONLY, 0666);
+    if (fd < 0) {
+      const std::string probe = core::temporary_path_for(path);
+      fd = ::open(probe.c_str(), O_WRONLY | O_CREAT, 0666);
+      error = fd < 0 ? errno : 0;
+      if (fd >= 0) ::unlink(probe.c_str());
+    }
+    if (fd >= 0) ::close(fd);
+  }
+  if (error) throw core::InputError(option, path, std::string("cannot be written: ") + std::strerror(error));
 }
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -118,7 +126,7 @@ uint64_t replace_nonfinite(core::Frame& frame) {
 
 int nonfinite_status(uint64_t replaced, bool allowed) {
   if (replaced == 0) return 0;
-  std::cerr << "shadetlm: " << (allowed ? "" : "warning: ") << replaced
+  std::cerr << "shadetlm: " << replaced
             << " NaN or infinite values reached the frame and were written as 0 (nonfinite_replaced in --stats)"
             << (allowed ? "" : "; exit status 3 (--allow-nonfinite accepts them)") << "\n";
   return allowed ? 0 : kExitNonfinite;

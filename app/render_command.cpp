@@ -160,10 +160,13 @@ void check_before_simulation(const RenderOptions& opt, const core::Scene& scene,
                  {"--timeline", inspect.timeline},
                  {"--timing-log", opt.timing_log}},
                 scene.inputs);
+  // The traced pixels: the region's part of the frame.
   const modules::TraceRegion& r = inspect.region;
+  const int64_t width = scene.camera.width, height = scene.camera.height;
+  const int64_t across = std::min<int64_t>(r.x1, width - 1) - r.x0 + 1, down = std::min<int64_t>(r.y1, height - 1) - r.y0 + 1;
   const uint64_t traced = inspect.vcd.empty() && inspect.timeline.empty() ? 0
-                          : inspect.region_given ? uint64_t(r.x1 - r.x0 + 1) * uint64_t(r.y1 - r.y0 + 1)
-                                                 : uint64_t(scene.camera.width) * uint64_t(scene.camera.height);
+                          : inspect.region_given ? uint64_t(std::max<int64_t>(across, 0) * std::max<int64_t>(down, 0))
+                                                 : uint64_t(width * height);
   take_run_memory(scene, true, opt.compare, traced);
   // The log is kept in memory during the run (about 100 bytes a pixel and block): for
   // the small frames the timing check is for.

@@ -3,6 +3,7 @@
 #include <ImfCompression.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfStdIO.h>
 #include <ImfStringAttribute.h>
 #include <ImfTiledOutputFile.h>
 
@@ -21,23 +22,29 @@ void write_mip_chain(const std::string& path, const Texture& base, const std::ve
     for (const auto& [k, v] : attributes) header.insert(k, Imf::StringAttribute(v));
     const char* names[3] = {"R", "G", "B"};
     for (const char* n : names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
-    Imf::TiledOutputFile out(tmp.c_str(), header);
-    if (out.numLevels() != int(levels.size()) + 1)
-      throw std::runtime_error(path + ": the mip chain does not match the EXR's levels");
-    for (int l = 0; l < out.numLevels(); ++l) {
-      const Texture& t = l == 0 ? base : levels[size_t(l) - 1];
-      std::vector<float> planes[3];
-      for (int c = 0; c < 3; ++c) {
-        planes[c].resize(t.texels.size());
-        for (size_t i = 0; i < t.texels.size(); ++i) planes[c][i] = t.texels[i][c];
+    Imf::StdOSStream bytes;  // in memory, then checked writes (frame_io.cpp's write_exr says why)
+    {
+      Imf::TiledOutputFile out(bytes, header);
+      if (out.numLevels() != int(levels.size()) + 1)
+        throw std::runtime_error(path + ": the mip chain does not match the EXR's levels");
+      for (int l = 0; l < out.numLevels(); ++l) {
+        const Texture& t = l == 0 ? base : levels[size_t(l) - 1];
+        std::vector<float> planes[3];
+        for (int c = 0; c < 3; ++c) {
+          planes[c].resize(t.texels.size());
+          for (size_t i = 0; i < t.texels.size(); ++i) planes[c][i] = t.texels[i][c];
+        }
+        Imf::FrameBuffer fb;
+        for (int c = 0; c < 3; ++c)
+          fb.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(planes[c].data()), sizeof(float),
+                                         sizeof(float) * size_t(t.width)));
+        out.setFrameBuffer(fb);
+        out.writeTiles(0, out.numXTiles(l) - 1, 0, out.numYTiles(l) - 1, l);
       }
-      Imf::FrameBuffer fb;
-      for (int c = 0; c < 3; ++c)
-        fb.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(planes[c].data()), sizeof(float),
-                                       sizeof(float) * size_t(t.width)));
-      out.setFrameBuffer(fb);
-      out.writeTiles(0, out.numXTiles(l) - 1, 0, out.numYTiles(l) - 1, l);
     }
+    CheckedFile file(tmp, path);
+    file.write(bytes.str());
+    file.close();
   });
 }
 

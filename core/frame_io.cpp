@@ -9,6 +9,7 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStdIO.h>
 #include <ImfStringAttribute.h>
 #include <png.h>
 
@@ -31,9 +32,17 @@ void write_exr(const std::string& path, const Frame& frame) {
         fb.insert(c.name, Imf::Slice(Imf::FLOAT, (char*)c.values.data(), sizeof(float),
                                      sizeof(float) * frame.width));
       }
-      Imf::OutputFile out(tmp.c_str(), header);
-      out.setFrameBuffer(fb);
-      out.writePixels(frame.height);
+      // Put together in memory, then written with checked writes: OpenEXR writes its
+      // offset table in its destructor, which swallows a failed write.
+      Imf::StdOSStream bytes;
+      {
+        Imf::OutputFile out(bytes, header);
+        out.setFrameBuffer(fb);
+        out.writePixels(frame.height);
+      }
+      CheckedFile file(tmp, path);
+      file.write(bytes.str());
+      file.close();
     } catch (const std::exception& e) {
       throw std::runtime_error(path + ": cannot write the EXR: " + e.what());
     }

@@ -9,7 +9,7 @@ namespace shadetlm::core {
 namespace {
 std::string type_name(const json& v) {
   if (v.is_number()) return "a number";
-  if (v.is_string()) return "the string \"" + v.get<std::string>() + "\"";
+  if (v.is_string()) return "the string \"" + printable(v.get<std::string>()) + "\"";
   if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
   if (v.is_null()) return "null";
   if (v.is_array()) return "an array";
@@ -203,7 +203,7 @@ void JsonReader::finish() const {
     if (!read_.count(it.key())) {
       std::string known;
       for (const auto& k : read_) known += (known.empty() ? "" : ", ") + k;
-      throw InputError(file_, field(it.key()),
+      throw InputError(file_, field(printable(it.key())),
                        "unknown key" + (known.empty() ? std::string() : " (known here: " + known + ")"));
     }
 }
@@ -243,7 +243,7 @@ json parse_json_text(const std::string& text, const std::string& file) {
     } else if (event == json::parse_event_t::key && !levels.empty()) {
       Level& object = levels.back();
       object.key = parsed.get<std::string>();
-      if (!object.keys.insert(object.key).second && duplicate.empty()) duplicate = path_to(object.key);
+      if (!object.keys.insert(object.key).second && duplicate.empty()) duplicate = path_to(printable(object.key));
     }
     return true;
   };
@@ -251,7 +251,7 @@ json parse_json_text(const std::string& text, const std::string& file) {
   auto here = [&] {
     if (levels.empty()) return std::string();
     Level& last = levels.back();
-    return path_to(last.array ? std::to_string(last.index + 1) : last.key);
+    return path_to(last.array ? std::to_string(last.index + 1) : printable(last.key));
   };
   const size_t nul = text.find('\0');
   if (nul != std::string::npos)

@@ -16,31 +16,33 @@ namespace shadetlm::core {
 namespace {
 
 // The temporaries being written, for the signal handler: fixed slots, since a handler
-// may not allocate. A slot's path is complete before `used` is set.
+// may not allocate. A slot is taken, then its path written, then marked ready for the
+// handler.
 constexpr int kSlots = 64;
 char slot_path[kSlots][4096];
-std::atomic<bool> slot_used[kSlots];
+std::atomic<bool> slot_taken[kSlots], slot_ready[kSlots];
 
 int register_temporary(const std::string& tmp) {
   if (tmp.size() >= sizeof(slot_path[0])) return -1;
   for (int i = 0; i < kSlots; ++i) {
     bool expected = false;
-    if (slot_used[i].load() || !slot_used[i].compare_exchange_strong(expected, true)) continue;
-    slot_used[i] = false;  // not visible to the handler until the path is whole
+    if (!slot_taken[i].compare_exchange_strong(expected, true)) continue;
     std::memcpy(slot_path[i], tmp.c_str(), tmp.size() + 1);
-    slot_used[i] = true;
+    slot_ready[i] = true;
     return i;
   }
   return -1;  // more outputs at once than slots: only a signal's clean-up misses it
 }
 
 void unregister_temporary(int slot) {
-  if (slot >= 0) slot_used[slot] = false;
+  if (slot < 0) return;
+  slot_ready[slot] = false;
+  slot_taken[slot] = false;
 }
 
 extern "C" void on_signal(int signal) {
   for (int i = 0; i < kSlots; ++i)
-    if (slot_used[i]) ::unlink(slot_path[i]);
+    if (slot_ready[i]) ::unlink(slot_path[i]);
   std::signal(signal, SIG_DFL);
   std::raise(signal);  // ends the process by the signal: its status is 128 + signal
 }
@@ -61,7 +63,10 @@ void remove_stale_temporaries(const std::string& path) {
     if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
     if (!rest.empty() && (rest.compare(0, 5, ".tmp.") != 0 || rest.find_first_not_of(".tmp0123456789") != std::string::npos))
       continue;
-    if (::kill(pid_t(std::stol(pid)), 0) == 0 || errno != ESRCH) continue;  // still running
+    // Still running, unless it is this process's number: then a run before it with the
+    // same number (a container's process 1) left it, since this run has not written yet.
+    const pid_t owner = pid_t(std::stol(pid));
+    if (owner != ::getpid() && (::kill(owner, 0) == 0 || errno != ESRCH)) continue;
     if (fs::remove(it->path(), ec))
       std::cerr << "shadetlm: removed " << it->path().string() << ", left by a run that was killed (process "
                 << pid << ")\n";
@@ -94,7 +99,12 @@ std::string naming_output(std::string what, const std::string& tmp, const std::s
 }
 
 void remove_temporaries_on_signals() {
-  for (int s : {SIGINT, SIGTERM, SIGHUP}) std::signal(s, on_signal);
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction current {};
+    // A signal the run was started ignoring (nohup, a script's background job) stays ignored.
+    if (::sigaction(s, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
+    std::signal(s, on_signal);
+  }
   // Past a file size limit (ulimit -f) a write fails with EFBIG, reported as any
   // failed write, instead of the signal ending the process mid-file.
   std::signal(SIGXFSZ, SIG_IGN);

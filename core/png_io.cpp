@@ -26,6 +26,7 @@ struct Decode {
   int bit_depth = 0, color_type = 0, palette_size = 0, bad_index = -1;
   png_color palette[256];
   png_byte palette_alpha[256];
+  png_bytep* rows = nullptr;  // (here, not a local: a local set after setjmp is lost by longjmp)
 };
 
 extern "C" void on_png_error(png_structp png, png_const_charp message) {
@@ -47,9 +48,9 @@ bool decode(std::FILE* file, Decode& d, unsigned char* (*room)(void* owner, Deco
     png_destroy_read_struct(&png, &info, nullptr);
     return false;
   }
-  png_bytep* rows = nullptr;
   if (setjmp(png_jmpbuf(png))) {
-    std::free(rows);
+    std::free(d.rows);
+    d.rows = nullptr;
     png_destroy_read_struct(&png, &info, nullptr);
     return false;
   }
@@ -82,12 +83,13 @@ bool decode(std::FILE* file, Decode& d, unsigned char* (*room)(void* owner, Deco
   const size_t row_bytes = png_get_rowbytes(png, info);
   unsigned char* pixels = room(owner, d, row_bytes);
   if (!pixels) png_longjmp(png, 1);
-  rows = static_cast<png_bytep*>(std::malloc(sizeof(png_bytep) * d.height));
-  if (!rows) png_error(png, "out of memory");
-  for (png_uint_32 y = 0; y < d.height; ++y) rows[y] = pixels + row_bytes * y;
-  png_read_image(png, rows);
+  d.rows = static_cast<png_bytep*>(std::malloc(sizeof(png_bytep) * d.height));
+  if (!d.rows) png_error(png, "out of memory");
+  for (png_uint_32 y = 0; y < d.height; ++y) d.rows[y] = pixels + row_bytes * y;
+  png_read_image(png, d.rows);
   png_read_end(png, nullptr);  // the chunks after the pixels, their CRCs up to IEND
-  std::free(rows);
+  std::free(d.rows);
+  d.rows = nullptr;
   png_destroy_read_struct(&png, &info, nullptr);
   return true;
 }
@@ -131,7 +133,12 @@ Texture read_png(const std::string& path, uint64_t max_texels) {
       own.refused = true;
       return nullptr;
     }
-    own.pixels.resize(row_bytes * d.height);
+    try {
+      own.pixels.resize(row_bytes * d.height);
+    } catch (const std::bad_alloc&) {  // (no exception may leave through libpng's frames)
+      std::snprintf(d.error, sizeof d.error, "out of memory for a %ux%u image", unsigned(d.width), unsigned(d.height));
+      return nullptr;
+    }
     return own.pixels.data();
   };
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);

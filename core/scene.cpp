@@ -207,15 +207,15 @@ Mesh read_shape(JsonReader& r, const std::string& shape, const std::string& base
   }
   if (shape == "cube") return make_cube(r.number("size", 1.0, kMinLength, kMaxLength));
   const std::string file = resolve(base_dir, r.string("file"));
+  Mesh mesh;
   try {
-    Mesh mesh = load_mesh_file(file);
-    const std::string why =
-        MemoryBudget::process().claim(mesh_bytes(mesh.vertex_count(), mesh.triangles.size()));
-    if (!why.empty()) r.fail("file", why);
-    return mesh;
+    mesh = load_mesh_file(file);
   } catch (const InputError& e) {
     r.fail("file", e.what());
   }
+  const std::string why = MemoryBudget::process().claim(mesh_bytes(mesh.vertex_count(), mesh.triangles.size()));
+  if (!why.empty()) r.fail("file", file + ": " + why);
+  return mesh;
 }
 
 void check_camera(JsonReader& r, const Camera& c) {
@@ -431,7 +431,7 @@ int read_material_ref(JsonReader& r, std::map<std::string, int>& material_index,
   if (r.has("material")) {
     std::string mn = r.string("material");
     auto it = material_index.find(mn);
-    if (it == material_index.end()) r.fail("material", "no material named \"" + mn + "\" in materials");
+    if (it == material_index.end()) r.fail("material", "no material named \"" + printable(mn) + "\" in materials");
     return it->second;
   }
   if (!material_index.count("default")) {  // the built-in grey

@@ -3,7 +3,7 @@
 # (default 60), under AddressSanitizer and UBSan, in a clang build of its own
 # (build-fuzz/). Seeds: the project's scenes, meshes and images. Crashes go to
 # out/fuzz/crashes/; a crash found is fixed and its input kept in
-# testbenches/fuzz/regressions/<target>/, which the hostile test replays.
+# testbenches/fuzz/regressions/<target>/, which hostile_more_test.sh replays (images).
 # Usage: scripts/fuzz.sh [SECONDS] [scene|image|mesh ...]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)

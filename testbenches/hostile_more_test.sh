@@ -896,5 +896,18 @@ finite parallax-deep 'materials\.p' render pb.json --stats out.json --set materi
 finite bump-square-steep 'materials\.m' rs --set 'materials.m={"path": "bump-square", "height_map": "t", "height_scale": 1e6, "square_k": 1e-6}'
 finite depth-range 'camera' rs --set camera.near=1e-9 --set camera.far=1e12
 
+# ------------------------------------------------------------------------------------------
+# 7. The fuzzers' findings (testbenches/fuzz/regressions/<target>/, scripts/fuzz.sh): each
+# image replayed as a scene's texture — refused or rendered, never a crash or, under
+# AddressSanitizer, a leak. (Their first byte picks the type: 0 PNG, 1 JPEG, 2 EXR.)
+for f in "$src"/testbenches/fuzz/regressions/image/*; do
+  [[ -e $f ]] || continue
+  ext=(png jpg exr)
+  e=${ext[$(( $(od -An -tu1 -N1 "$f") % 3 ))]}
+  tail -c +2 "$f" >"found.$e"
+  scene found.json '[{"shape": "sphere", "material": "m"}]' "{\"t\": {\"type\": \"image\", \"file\": \"found.$e\"}}" '{"m": {"texture": "t"}}'
+  either "fuzz-image-$(basename "$f")" 'found' '[[ -s out.exr ]]' render found.json
+done
+
 echo "$passes passed, $failures failed"
 [[ $failures -eq 0 && $passes -ge 180 ]]

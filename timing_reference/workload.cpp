@@ -1,5 +1,7 @@
 #include "shadetlm/timing_reference/workload.hpp"
 
+#include "shadetlm/core/input_file.hpp"
+
 #include <fstream>
 #include <sstream>
 
@@ -8,6 +10,7 @@
 namespace shadetlm::timing_reference {
 
 Workload read_workload(const std::string& path) {
+  core::check_input_file(path, "", core::kMaxSceneBytes * 4);  // (a 1 MP frame's log is about 100 MB)
   std::ifstream in(path);
   if (!in) throw core::InputError(path, "", "cannot open the timing log");
   Workload w;

@@ -89,7 +89,7 @@ class VcdText {
 
 }  // namespace
 
-void Tracer::write_vcd(const std::string& path) const {
+void Tracer::write_vcd(const std::string& path) {
   // The signals' current values: per probe valid, ready, x, y, triangle, then values.
   struct Signal {
     std::string id;
@@ -136,7 +136,7 @@ void Tracer::write_vcd(const std::string& path) const {
   vcd << "#0\n$dumpvars\n0" << vcd_id(0) << "\n";
   dump(true);
   vcd << "$end\n";
-  std::vector<Event> events = events_;
+  std::vector<Event>& events = events_;  // sorted in place: a trace may be large
   std::sort(events.begin(), events.end());
   for (size_t e = 0; e < events.size();) {
     const uint64_t cycle = events[e].cycle;

@@ -45,7 +45,7 @@ class Tracer {
   // `valid`, handed on at `handed` (ready high then; low before it: a stall).
   void record(int probe, uint64_t valid, uint64_t handed, int x, int y, uint32_t triangle, const double* values);
   // After the run: the records as a VCD, written whole or not at all (core/output.hpp).
-  void write_vcd(const std::string& path) const;
+  void write_vcd(const std::string& path);  // (sorts the records)
 
   // The signals, for the GTKWave save file: (block, full VCD names).
   struct ProbeInfo {

@@ -158,7 +158,7 @@ class Top : public sc_core::sc_module {
   const PixelLine& line() const { return *line_; }
   TimingLog* log() const { return log_.get(); }
   const std::vector<std::unique_ptr<BlockInfo>>& modules() const { return modules_; }
-  const Tracer* tracer() const { return tracer_.get(); }
+  Tracer* tracer() { return tracer_.get(); }
   Timeline& timeline_slices() { return timeline_; }
   PixelLine& line() { return *line_; }
   // The timeline's DRAM counter, without a bin asked for: a point every this many cycles.

@@ -1,4 +1,4 @@
-// libFuzzer target: the image loaders (PNG and JPEG through stb, EXR through OpenEXR).
+// libFuzzer target: the image loaders (PNG through libpng, JPEG through stb, EXR through OpenEXR).
 // The first byte picks the extension; the rest is the file. Bad input may only end in
 // core::InputError. scripts/fuzz.sh builds and runs it.
 #include <cstdio>
