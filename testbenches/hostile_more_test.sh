@@ -591,6 +591,10 @@ hostile -U invalid-utf8-in-file-name "base.json: textures.t.file" render base.js
   --set 'textures.t={"type": "image", "file": "x.png"}' --set $'textures.t.file=a\xffb.png'
 cp base.json $'bad\xff.json'
 hostile -U -a bad invalid-utf8-scene-path "camera.fov_y" render $'bad\xff.json' --set camera.fov_y=0
+# A good scene under a name that is not UTF-8, with --stats: the statistics (JSON, UTF-8)
+# hold the name with the byte replaced, rather than fail after the render.
+cp base.json $'good\xff.json'
+renders stats-invalid-utf8-scene-path render $'good\xff.json' --stats out-stats.json
 # Scene files that are no files.
 mkdir -p folder.json
 hostile -a folder -n "invalid JSON" scene-is-folder "folder.json" render folder.json
