@@ -24,7 +24,7 @@ if [[ ${1:-} == --sanitize ]]; then
   cmake --build "$build" -j"$(nproc)"
   cd "$build"
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    ctest --output-on-failure -j"$(nproc)" "$@"
+    LSAN_OPTIONS=suppressions=$root/testbenches/lsan.supp ctest --output-on-failure -j"$(nproc)" "$@"
   exit
 fi
 "$root/scripts/build.sh"

@@ -46,6 +46,8 @@ fresh in
   "$bin" reference --set 'camera.resolution=[32,32]' -o g.exr --preview h.png >/dev/null) ||
   { echo "setup failed"; exit 1; }
 parallax=$src/scenes/parallax/steps.json
+asan=0  # a build under AddressSanitizer (scripts/test.sh --sanitize): libasan linked in
+ldd "$bin" | grep -q libasan && asan=1
 small=(--set 'camera.resolution=[64,48]')
 tiny=(--set 'camera.resolution=[4,4]')
 
@@ -72,6 +74,14 @@ limit_between() {
 # past LIMIT bytes failing; its message names one of NAMED. (Output goes through pipes,
 # which the limit does not reach.)
 full_disk() {
+  # Under AddressSanitizer (scripts/test.sh --sanitize) a write that fails after a
+  # SystemC simulation is not tried: unwinding the exception past SystemC's coroutine
+  # stacks makes ASan report a false stack-buffer-overflow (its sigaltstack interceptor,
+  # google/sanitizers#189). The plain build's run holds these cases.
+  if ((asan)) && [[ " $* " == *" render "* && " $* " != *" --engine loop "* ]]; then
+    echo "note: $1 skipped under AddressSanitizer"
+    return
+  fi
   begin "$1"
   local limit=$2 named=$3 rc
   shift 3
@@ -214,7 +224,7 @@ killed_case sigKILL-while-frame-written 'out.exr.tmp.*'
 # (Not under AddressSanitizer, scripts/test.sh --sanitize: it reserves terabytes of
 # address space for its shadow memory, so that no ulimit -v leaves it room to start.)
 big=(render --set 'camera.resolution=[1920,1080]' -o out.exr --preview out.png)
-if grep -qa AddressSanitizer "$bin"; then
+if ((asan)); then
   echo "note: the allocation limits are skipped under AddressSanitizer"
 else
   runs_within() {  # runs_within KB COMMAND...: COMMAND succeeds in an empty folder within KB of memory

@@ -22,7 +22,7 @@ S() { timeout -k 5 30 "$bin" "$@"; }  # a hung run ends as exit 124: a failure, 
 # space for its shadow memory and adds to the resident size, neither the limit nor the
 # peak is measured (./rss reads 0): the plain build's run holds them.
 asan=0
-grep -qa AddressSanitizer "$bin" && asan=1
+ldd "$bin" | grep -q libasan && asan=1
 big() {
   if ((asan)); then
     echo 0 >rss
@@ -652,7 +652,9 @@ ply() { printf 'ply\nformat %s 1.0\nelement vertex %s\nproperty float x\npropert
 { ply binary_little_endian 3 1; noise 7 2; } >bin.ply;   mesh ply-binary-truncated bin.ply
 { ply binary_little_endian 3 1; noise 400 3; } >rnd.ply; mesh ply-binary-garbage rnd.ply
 { ply binary_little_endian 4000000000 1; head -c 64 /dev/zero; } >huge.ply
-mesh ply-4e9-vertices huge.ply -m 256000
+# (Not under AddressSanitizer: assimp asks for 48 GB at once, which ASan's allocator
+# answers by aborting where the plain one throws; the plain build's run holds the case.)
+((asan)) || mesh ply-4e9-vertices huge.ply -m 256000
 { ply ascii 3 1; printf '0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n'; } >oob.ply;      mesh ply-index-out-of-range oob.ply
 { ply ascii 3 1; printf '0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n'; } >neg.ply;     mesh ply-negative-index neg.ply
 { ply ascii 3 1; printf '0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n'; } >nan.ply;    mesh ply-nan nan.ply
