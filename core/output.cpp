@@ -128,10 +128,10 @@ void Temporary::sync() const {
   if (!synced) throw std::runtime_error(path_ + ": cannot write the file: " + std::strerror(error));
 }
 
-void Temporary::commit() {
+void Temporary::commit(bool synced) {
   if (done_) return;
   try {
-    sync();
+    if (!synced) sync();
     rename_into_place(tmp_, path_);
   } catch (...) {
     discard();
@@ -202,7 +202,7 @@ void OutputSet::commit() {
   for (const auto& f : files_) f->sync();  // a full disk shows before anything is in place
   for (size_t i = 0; i < files_.size(); ++i) {
     try {
-      files_[i]->commit();
+      files_[i]->commit(true);
     } catch (...) {  // take back what is already in place
       for (size_t k = 0; k < i; ++k) remove_quietly(files_[k]->output());
       throw;

@@ -38,7 +38,7 @@ class Temporary {
   const std::string& path() const { return tmp_; }
   const std::string& output() const { return path_; }
   void sync() const;  // to disk (a full disk may show only then); throws naming the output
-  void commit();      // sync(), then renamed into place
+  void commit(bool synced = false);  // sync() unless done, then renamed into place
   void discard();
 
  private:
@@ -90,15 +90,9 @@ std::string naming_output(std::string what, const std::string& tmp, const std::s
 // name the output.
 template <class F>
 void write_atomically(const std::string& path, F write) {
-  Temporary tmp(path);
-  try {
-    write(tmp.path());
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw std::runtime_error(naming_output(e.what(), tmp.path(), path));
-  }
-  tmp.commit();
+  OutputSet one;
+  one.write_with(path, write);
+  one.commit();
 }
 
 template <class F>
