@@ -3,23 +3,61 @@
 // every pixel's start and hand-over at every block, each triangle's times, the pass's
 // end and the blocks' busy, starved and blocked cycles and FIFO figures with the fast
 // model's. Exit 0: all equal; 1: some differ.
+//
+// --rtl-normalize MODE puts the RTL normalize unit of that mode (docs/rtl.md) in place
+// of the reference's own unit for the normalize block, in lockstep with its clock;
+// --rtl-vcd FILE traces its pins and registers.
+#include <algorithm>
 #include <iostream>
 
 #include "app/commands.hpp"
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/output.hpp"
+#include "shadetlm/modules/normalize/normalize_kernel.hpp"
 #include "shadetlm/timing_reference/clocked.hpp"
+#ifdef SHADETLM_HAVE_RTL
+#include "shadetlm/rtl/normalize/normalize_unit_pins.hpp"
+#endif
 
 namespace shadetlm::app {
 
 Command add_timing_check_command(CLI::App& app) {
   auto log = std::make_shared<std::string>();
   auto show = std::make_shared<size_t>(10);
+  auto rtl_mode = std::make_shared<std::string>();
+  auto rtl_vcd = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand(
       "timing-check", "check a render's timing log against the clocked timing reference; exit 0 equal, 1 not");
   cmd->add_option("log", *log, "timing log written by `shadetlm render --timing-log`")->required();
   cmd->add_option("--show", *show, "differences described")->capture_default_str()->check(finite_in(0, 1000000));
-  return {cmd, [log, show]() {
+  cmd->add_option("--rtl-normalize", *rtl_mode, "the RTL normalize unit of this mode as the normalize block's unit")
+      ->check(CLI::IsMember(modules::normalize_mode_names()));
+  cmd->add_option("--rtl-vcd", *rtl_vcd, "trace the RTL unit's pins and registers to this VCD file")
+      ->needs("--rtl-normalize");
+  return {cmd, [log, show, rtl_mode, rtl_vcd]() {
             const timing_reference::Workload w = timing_reference::read_workload(*log);
-            const timing_reference::Measured m = timing_reference::run_clocked(w);
+            std::unique_ptr<core::Temporary> vcd;  // the trace, renamed into place once whole
+            std::unique_ptr<timing_reference::UnitPins> pins;
+            if (!rtl_mode->empty()) {
+#ifdef SHADETLM_HAVE_RTL
+              if (!rtl_vcd->empty()) {
+                if (rtl_vcd->size() < 5 || rtl_vcd->substr(rtl_vcd->size() - 4) != ".vcd")
+                  throw core::InputError("--rtl-vcd", *rtl_vcd, "the waveform file must end in .vcd");
+                check_outputs({{"--rtl-vcd", *rtl_vcd}}, {*log});
+                vcd = std::make_unique<core::Temporary>(*rtl_vcd);
+              }
+              if (std::none_of(w.blocks.begin(), w.blocks.end(), [](const auto& b) { return b.name == "normalize"; }))
+                throw core::InputError(*log, "block", "the log has no normalize block for --rtl-normalize");
+              pins = rtl::make_normalize_unit_pins(int(modules::parse_normalize_mode(*rtl_mode)),
+                                                   vcd ? vcd->path() : std::string());
+#else
+              throw core::InputError("--rtl-normalize", *rtl_mode,
+                                     "this build has no RTL (Verilator was not found when it was configured)");
+#endif
+            }
+            const timing_reference::Measured m = timing_reference::run_clocked(w, "normalize", pins.get());
+            pins.reset();  // (closes the trace)
+            if (vcd) vcd->commit();
             std::string report;
             const bool equal = timing_reference::compare(w, m, report, *show);
             std::cout << *log << ": " << report << "  clocked reference: " << m.end << " cycles stepped in "

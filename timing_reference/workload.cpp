@@ -20,6 +20,7 @@ Workload read_workload(const std::string& path) {
     throw core::InputError(path, "line " + std::to_string(number), why);
   };
   std::vector<std::pair<int64_t, uint32_t>> misses;  // h records, for the next p or e
+  bool packet_start = false;  // a k record: the next pixel starts a span packet
   // The h records before a run of `steps` hidden steps: in order, within it.
   auto take_misses = [&](int64_t steps, std::vector<std::pair<int64_t, uint32_t>>& into) {
     for (size_t k = 0; k < misses.size(); ++k)
@@ -70,9 +71,15 @@ Workload read_workload(const std::string& path) {
           w.blocks[1].line_bytes == 0)
         fail("expected: h <step> <lines in 1 … 65535>, after a memory record, the raster a memory client");
       misses.push_back({step, lines});
+    } else if (kind == "k") {
+      std::string extra;
+      if (s >> extra) fail("expected: k (alone: a span packet starts)");
+      packet_start = true;
     } else if (kind == "p") {
       if (w.triangles.empty() || w.blocks.size() < 2) fail("a pixel before its blocks and triangle");
       Pixel p;
+      p.first = packet_start;
+      packet_start = false;
       s >> p.x >> p.y >> p.hidden;
       const size_t line_blocks = w.blocks.size() - 1;
       p.work.resize(line_blocks - 1);

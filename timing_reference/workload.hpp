@@ -20,6 +20,7 @@ struct BlockSpec {
 struct Pixel {
   int x = 0, y = 0;
   int64_t hidden = 0;                // the raster's hidden steps just before it
+  bool first = false;                // the first of its span packet (a `k` record before it)
   std::vector<uint32_t> work;        // per span block (units of its II; 0: bypassed)
   std::vector<uint32_t> lines;       // per span block: DRAM lines moved (a memory record only)
   uint32_t depth_lines = 0;          // the raster's depth read and write

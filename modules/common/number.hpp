@@ -185,13 +185,37 @@ inline Half sqrt_op(Half x) { return Half::result(std::sqrt(double(x)), x); }
 inline Half rsqrt_op(Half x) { return Half::result(1.0 / std::sqrt(double(x)), x); }
 // The exponent is the table's content, not a value of the datapath.
 inline Half pow_op(Half x, float e) { return Half::result(std::pow(double(x), double(e)), x); }
+// The fixed-point square roots are computed on the raw integers, correctly rounded (to
+// nearest; no ties can occur), as the RTL unit does (rtl/normalize): a double's sqrt
+// rounded again to F bits could be a unit off where the root lies near a half unit.
+using uint128 = unsigned __int128;
+// ⌊√v⌋ and v − ⌊√v⌋² for v < 2^126.
+inline uint128 isqrt(uint128 v, uint128* remainder = nullptr) {
+  uint128 s = uint128(std::sqrt(double(v)));
+  while (s * s > v) --s;
+  while ((s + 1) * (s + 1) <= v) ++s;
+  if (remainder) *remainder = v - s * s;
+  return s;
+}
 inline Fixed sqrt_op(Fixed x) {
   if (x < Fixed::from_raw(0)) return ++number_context->events.invalid, Fixed::from_raw(0);
-  return std::sqrt(double(x));
+  // √(x·2^-F)·2^F = √(x·2^F): round up where the remainder passes s (√v > s + ½).
+  uint128 rem;
+  const uint128 s = isqrt(uint128(x.raw()) << number_context->frac_bits, &rem);
+  return Fixed::from_raw(__int128(rem > s ? s + 1 : s));
 }
 inline Fixed rsqrt_op(Fixed x) {
   if (!(x > Fixed::from_raw(0))) return ++number_context->events.invalid, Fixed::from_raw(number_context->max_raw);
-  return 1.0 / std::sqrt(double(x));
+  const int f = number_context->frac_bits;
+  if (3 * f + 3 > 126) return 1.0 / std::sqrt(double(x));  // beyond 128-bit integers (F > 41): via double
+  // 2^F / √(x·2^-F) = √(2^3F / x). With q, rq = 2^3F ÷ x and s, rem = ⌊√q⌋, q − s²: the
+  // root passes s + ½ when rem > s, or rem = s and rq/x > ¼.
+  const uint128 n = uint128(1) << (3 * f), d = uint128(x.raw());
+  const uint128 q = n / d, rq = n % d;
+  uint128 rem;
+  const uint128 s = isqrt(q, &rem);
+  const bool up = rem > s || (rem == s && 4 * rq > d);
+  return Fixed::from_raw(__int128(std::min<uint128>(up ? s + 1 : s, uint128(number_context->max_raw) + 1)));
 }
 inline Fixed pow_op(Fixed x, float e) { return std::pow(double(x), double(e)); }
 

@@ -255,6 +255,7 @@ void TimingLog::stats(const std::string& name, const BlockTimes& t) {
            std::to_string(t.blocked) + " " + std::to_string(t.fifo_cycles) + " " + std::to_string(t.fifo_peak) + " " + std::to_string(t.memory_stall) + "\n";
 }
 void TimingLog::pixels(const SpanPacket& p, uint64_t hidden, const PixelLine& line) {
+  if (p.count > 0) text_ += "k\n";
   for (int i = 0; i < p.count; ++i) {
     text_ += "p " + std::to_string(p.x0 + i) + " " + std::to_string(p.y) + " " +
              std::to_string(i == 0 ? hidden : 0);

@@ -90,6 +90,7 @@ class PixelLine;
 //   memory <latency> <bytes_per_cycle>             the DRAM (none: ideal memory)
 //   t <triangle> <start> <handed>                 setup hands a triangle on
 //   r <cycle>                                     the raster takes it
+//   k                                             a span packet starts: its pixels follow
 //   p <x> <y> <hidden> <w_1> … <w_J> [<m_0> … <m_J>] <s_0> <v_0> <d_0> … <s_J> <v_J> <d_J>
 //                                                 a pixel: hidden steps walked before it,
 //                                                 its work at each span block, the DRAM

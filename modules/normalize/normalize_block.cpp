@@ -1,6 +1,7 @@
 // The normalize block's declaration (modules/common/declaration.hpp).
 #include "shadetlm/modules/common/declaration.hpp"
 #include "shadetlm/modules/normalize/normalize_kernel.hpp"
+#include "shadetlm/modules/normalize/normalize_rtl.hpp"
 
 namespace shadetlm::modules {
 
@@ -19,15 +20,26 @@ Timing normalize_units(NormalizeMode mode, const core::Settings& s) {
     default: return radicand + table + 2 * newton + mul;
   }
 }
+
+// The block's timing as the pipeline resolves it: its own latency and II, and its units'.
+Timing resolved_timing(const BlockContext& ctx) {
+  const Timing units = normalize_units(parse_normalize_mode(ctx.string("mode")), ctx.settings);
+  return {uint64_t(ctx.integer("latency")) + units.latency, std::max(uint64_t(ctx.integer("ii")), units.ii), 0};
+}
 }  // namespace
 
 BlockDecl normalize_block() {
   BlockDecl d{"normalize", {1, 1}, true,
-              {{"mode", "exact", normalize_mode_names(), 0, 0, "how the normal is normalized"}},
+              {{"mode", "exact", normalize_mode_names(), 0, 0, "how the normal is normalized"},
+               {"impl", "kernel", {"kernel", "rtl"}, 0, 0,
+                "the C++ kernel, or the RTL unit verilated into the loop (docs/rtl.md)"}},
               {},  // always: every shading path lights a unit normal
               [](const BlockContext& ctx) -> std::unique_ptr<Block> {
-                return std::make_unique<SpanBlock<NormalizeKernel>>(parse_normalize_mode(ctx.string("mode")),
-                                                                    ctx.format());
+                const NormalizeMode mode = parse_normalize_mode(ctx.string("mode"));
+                if (ctx.string("impl") == "rtl")
+                  return std::make_unique<SpanBlock<NormalizeRtlKernel>>(mode, ctx.format(), resolved_timing(ctx),
+                                                                         ctx.scene.file);
+                return std::make_unique<SpanBlock<NormalizeKernel>>(mode, ctx.format());
               }};
   d.units = [](const BlockContext& ctx) { return normalize_units(parse_normalize_mode(ctx.string("mode")), ctx.settings); };
   return d;

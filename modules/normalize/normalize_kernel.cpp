@@ -28,6 +28,8 @@ Ops normalize_ops_per_pixel(NormalizeMode mode) {
   }
 }
 
+Ops normalize_ops_per_pixel_direct_rsqrt() { return {/*add*/ 2, /*mul*/ 6, 0, 0, /*rsqrt*/ 1}; }
+
 Ops normalize_ops_per_span(NormalizeMode mode) {
   // R_0 = |N_0|² and δ_0 = 2 N_0·ΔN_H + c/2, once per span.
   if (mode == NormalizeMode::ForwardDifference) return {/*add*/ 5, /*mul*/ 8};
@@ -42,34 +44,29 @@ void NormalizeKernel::process(SpanPacket& p) {
       radicand_[i] = radicand(n);
     }
   // The forward-difference radicand follows a normal that steps by ΔN_H along the span;
-  // a bump-mapped normal does not, so bump packets are normalized exactly instead.
-  const NormalizeMode mode = mode_ == NormalizeMode::ForwardDifference && core::bump_path(t.material->path)
-                                 ? NormalizeMode::Exact
-                                 : mode_;
-  with_number_type(numbers_, [&](auto zero) { normalize_as<decltype(zero)>(p, mode); });
+  // a bump-mapped normal does not, so bump packets take the radicand directly.
+  const bool direct = mode_ == NormalizeMode::ForwardDifference && core::bump_path(t.material->path);
+  with_number_type(numbers_, [&](auto zero) { normalize_as<decltype(zero)>(p, direct); });
   nonfinite_ += count_nonfinite(p.n, p.count);
-  tally_.add(mode == mode_ ? 0 : 1, p.count);
+  tally_.add(direct ? 1 : 0, p.count);
 }
 
 Ops NormalizeKernel::ops() const {
-  const NormalizeMode modes[2] = {mode_, NormalizeMode::Exact};
-  Ops o;
-  for (int k = 0; k < 2; ++k)
-    o += normalize_ops_per_pixel(modes[k]) * tally_.pixels[k] + normalize_ops_per_span(modes[k]) * tally_.packets[k];
-  return o;
+  return normalize_ops_per_pixel(mode_) * tally_.pixels[0] + normalize_ops_per_span(mode_) * tally_.packets[0] +
+         normalize_ops_per_pixel_direct_rsqrt() * tally_.pixels[1];
 }
 
 template <class T>
-void NormalizeKernel::normalize_as(SpanPacket& p, NormalizeMode mode) {
+void NormalizeKernel::normalize_as(SpanPacket& p, bool direct) {
   const TriangleSetup& t = *p.tri;
   const T dh[3] = {T(t.n[0].ax), T(t.n[1].ax), T(t.n[2].ax)};
   if constexpr (std::is_same_v<T, float>) {  // in place, in whole groups of lanes (kLanes)
-    normalize_span(p.n[0], p.n[1], p.n[2], lanes(p.count), dh, T(t.c), mode);
+    normalize_span(p.n[0], p.n[1], p.n[2], lanes(p.count), dh, T(t.c), mode_, direct);
   } else {  // the packet's float32 wires rounded to the format, and back
     T n[3][kSpanMax];
     for (int c = 0; c < 3; ++c)
       for (int i = 0; i < p.count; ++i) n[c][i] = T(p.n[c][i]);
-    normalize_span(n[0], n[1], n[2], p.count, dh, T(t.c), mode);
+    normalize_span(n[0], n[1], n[2], p.count, dh, T(t.c), mode_, direct);
     for (int c = 0; c < 3; ++c)
       for (int i = 0; i < p.count; ++i) p.n[c][i] = float(n[c][i]);
   }

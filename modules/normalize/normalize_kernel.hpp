@@ -6,7 +6,9 @@
 //   forward-difference  r by second-order differences along the packet:
 //                         R_0 = |N_0|², δ_0 = 2 N_0·ΔN_H + |ΔN_H|², R_{n+1} = R_n + δ_n,
 //                         δ_{n+1} = δ_n + c, c = 2|ΔN_H|² (from setup);
-//                       two additions per pixel and no multiplication, then N · rsqrt(r)
+//                       two additions per pixel and no multiplication, then N · rsqrt(r);
+//                       a bump-mapped packet, whose normals do not step by ΔN_H, takes
+//                       r direct into the same rsqrt unit
 //   rsqrt0|1|2          r direct; the bit-level inverse square root estimate
 //                       (one table-like look-up) refined by 0, 1 or 2 Newton steps
 //                       y ← y (3/2 − r/2 · y²)
@@ -109,8 +111,11 @@ void normalize_pixels(T* nx, T* ny, T* nz, int count) {
 
 // Normalizes the `count` (≤ kSpanMax) normals of a span whose normals step by dh (ΔN_H)
 // from one pixel to the next; c = 2|ΔN_H|².
+// With `direct`, forward-difference mode takes each radicand directly (bump packets).
 template <class T>
-void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, NormalizeMode mode) {
+void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, NormalizeMode mode, bool direct = false) {
+  if (mode == NormalizeMode::ForwardDifference && direct)
+    return normalize_pixels<NormalizeMode::ForwardDifference>(nx, ny, nz, count);
   if (mode == NormalizeMode::ForwardDifference) {
     if (count == 0) return;
     const T n0[3] = {nx[0], ny[0], nz[0]};
@@ -137,6 +142,8 @@ void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, Normaliz
 // Operations per pixel and per packet (span), as the code above performs them.
 Ops normalize_ops_per_pixel(NormalizeMode mode);
 Ops normalize_ops_per_span(NormalizeMode mode);
+// Forward-difference mode's bump packets: the radicand direct, then the rsqrt unit.
+Ops normalize_ops_per_pixel_direct_rsqrt();
 
 class NormalizeKernel {
  public:
@@ -166,11 +173,11 @@ class NormalizeKernel {
   }
 
  private:
-  template <class T> void normalize_as(SpanPacket& p, NormalizeMode mode);
+  template <class T> void normalize_as(SpanPacket& p, bool direct);
 
   NormalizeMode mode_;
   uint16_t seeded_[kSpanMax];
-  PacketTally<2> tally_;  // packets normalized in mode_ (0), or exactly (1: bump packets)
+  PacketTally<2> tally_;  // packets of mode_ (0); forward-difference mode's bump packets, radicand direct (1)
   NumberContext numbers_;
   uint64_t nonfinite_ = 0;
   bool capture_ = false;
