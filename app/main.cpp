@@ -9,6 +9,7 @@
 #include "shadetlm/core/memory_budget.hpp"
 #include "shadetlm/core/output.hpp"
 #include "shadetlm/core/version.hpp"
+#include "shadetlm/modules/normalize/normalize_rtl.hpp"
 
 using namespace shadetlm;  // core::, modules::, reference::
 
@@ -24,7 +25,8 @@ int main(int argc, char** argv) {
   sc_core::sc_report_handler::set_actions(sc_core::SC_WARNING, sc_core::SC_DISPLAY);
   sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);  // e.g. the VCD timescale
   CLI::App app{"shadetlm: a SystemC/TLM-2.0 model of a per-pixel shading pipeline"};
-  app.set_version_flag("--version", core::kVersion);
+  // The version, and what RTL this build has (docs/rtl.md).
+  app.set_version_flag("--version", [] { return std::string(core::kVersion) + "\nrtl: " + modules::normalize_rtl_build(); });
   app.require_subcommand(1);
   std::string max_memory;
   app.add_option("--max-memory", max_memory,

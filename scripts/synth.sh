@@ -1,0 +1,96 @@
+#!/usr/bin/env bash
+# The RTL normalize unit's silicon cost (docs/rtl.md, "Silicon cost"), every figure
+# printed here: Yosys synthesizes rtl/normalize to generic cells for each mode at the
+# widths the format report names (docs/numerical-stability.md: fixed:1.12, the fewest
+# bits that keep the long-spans scene within 1/255; fixed:3.16, tiny normals within
+# 2^-12; fixed:7.20, a margin for the golden scenes' perspective normals), and prints
+#   - the datapath alone (normalize_datapath: one pixel's arithmetic, combinational):
+#     cells and Yosys's CMOS transistor estimate (`stat -tech cmos`);
+#   - the whole unit at the mode's latency and II: its flip-flops (the radicand's
+#     registers and the held pixels, ⌈(latency + 1) / II⌉ of them);
+#   - beside them, from renders of the same configuration: the model's operations a
+#     pixel (the block's declared counts) and the normal's largest error against the
+#     golden model on the long-spans stress scene (`render --compare-reference`, layer N).
+# Usage: scripts/synth.sh [--quick] [--doc]
+#   --quick  fixed:1.12 only (about 2 minutes; the whole table takes about 15)
+#   --doc    the table into docs/rtl.md between its <!-- synth:1 --> markers
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+"$root/scripts/setup.sh" yosys
+bin=${SHADETLM:-$root/build/app/shadetlm}
+[[ -x $bin ]] || "$root/scripts/build.sh" >/dev/null
+formats="fixed:1.12 fixed:3.16 fixed:7.20"
+doc=0
+for a in "$@"; do
+  case $a in
+    --quick) formats="fixed:1.12" ;;
+    --doc) doc=1 ;;
+    *) echo "usage: scripts/synth.sh [--quick] [--doc]" >&2; exit 2 ;;
+  esac
+done
+out=$root/out/synth
+mkdir -p "$out"
+rtl=$root/rtl/normalize
+# mode index latency II: the model's defaults (rtl/CMakeLists.txt builds the same).
+modes=("exact 0 40 3" "forward-difference 1 32 3" "rsqrt0 2 21 1" "rsqrt1 3 37 1" "rsqrt2 4 53 1")
+
+# synth FORMAT MODE INDEX LATENCY II: Yosys's statistics of the datapath and the unit.
+synth() {
+  local format=$1 mode=$2 index=$3 latency=$4 ii=$5 ib fb
+  ib=${format#fixed:}; ib=${ib%.*}; fb=${format#*.}
+  local tag="$mode.$format"
+  for top in normalize_datapath normalize_unit; do
+    local params="-set IBITS $ib -set FBITS $fb -set MODE $index"
+    [[ $top == normalize_unit ]] && params+=" -set LATENCY $latency -set II $ii"
+    cat >"$out/$tag.$top.ys" <<EOF
+read_verilog -sv $rtl/normalize_unit.sv $rtl/normalize_datapath.sv $rtl/fx_isqrt.sv
+chparam $params $top
+synth -top $top -flatten
+stat -tech cmos
+EOF
+    yosys -q -l "$out/$tag.$top.log" "$out/$tag.$top.ys" >/dev/null
+  done
+}
+export -f synth
+export out rtl
+jobs=()
+for f in $formats; do for m in "${modes[@]}"; do jobs+=("$f $m"); done; done
+printf '%s\n' "${jobs[@]}" | xargs -P "$(nproc)" -L 1 bash -c 'synth "$@"' _
+
+python3 - "$bin" "$root" "$out" "$formats" <<'PY' | tee "$out/synth.txt"
+import json, re, subprocess, sys
+bin, root, out, formats = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4].split()
+modes = ["exact", "forward-difference", "rsqrt0", "rsqrt1", "rsqrt2"]
+scene = f"{root}/scenes/stress/long-spans.json"
+
+def stat(path):
+    text = open(path).read()
+    cells = int(re.findall(r"Number of cells:\s+(\d+)", text)[-1])
+    transistors = int(re.findall(r"Estimated number of transistors:\s+(\d+)", text)[-1])
+    flops = sum(int(n) for n in re.findall(r"\$_(?:S?DFF\w*)_\s+(\d+)", text.split("Number of cells")[-1]))
+    return cells, transistors, flops
+
+def render(mode, fmt):
+    subprocess.run([bin, "render", scene, "-o", f"{out}/f.exr", "--stats", f"{out}/s.json", "--compare-reference",
+                    "--set", f"pipeline.normalize.mode={mode}", "--set", f"pipeline.normalize.format={fmt}"],
+                   check=True, capture_output=True)
+    s = json.load(open(f"{out}/s.json"))
+    block = next(b for b in s["blocks"] if b["name"] == "normalize")
+    ops = sum(v for k, v in block["ops"].items()) / block["pixels"]
+    return ops, s["error"]["n"]["max"]
+
+print("| mode | format | datapath cells | datapath transistors | unit flip-flops | latency / II |"
+      " model ops a pixel | normal error, max |")
+print("|---|---|---:|---:|---:|---|---:|---:|")
+timing = {"exact": "40 / 3", "forward-difference": "32 / 3", "rsqrt0": "21 / 1", "rsqrt1": "37 / 1", "rsqrt2": "53 / 1"}
+for fmt in formats:
+    for mode in modes:
+        cells, transistors, _ = stat(f"{out}/{mode}.{fmt}.normalize_datapath.log")
+        _, _, flops = stat(f"{out}/{mode}.{fmt}.normalize_unit.log")
+        ops, err = render(mode, fmt)
+        print(f"| {mode} | `{fmt}` | {cells} | {transistors} | {flops} | {timing[mode]} | {ops:.2f} | {err:.2e} |")
+PY
+if ((doc)); then
+  python3 "$root/scripts/doc-tables.py" "$out/synth.txt" "$root/docs/rtl.md" synth 1
+  echo "docs/rtl.md updated"
+fi

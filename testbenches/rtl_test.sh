@@ -1,0 +1,135 @@
+#!/usr/bin/env bash
+# RTL in the loop (docs/rtl.md): the verilated normalize unit against the C++ kernel and
+# the clocked timing reference.
+#  1. Bit-exact: every golden scene in every mode, the RTL in the loop
+#     (pipeline.normalize.impl=rtl, which also checks the unit's pin timing pixel by
+#     pixel) against the fixed-point kernel in the same format: RGB, Z and N identical —
+#     and different from the float32 frame (the format is in force).
+#  2. Cycle-exact: the clocked reference with the RTL as its normalize unit, in lockstep
+#     (timing-check --rtl-normalize), against the fast model's times for every pixel at
+#     every block: the golden scenes in every mode, and configurations where the unit's
+#     output stalls (FIFOs of one, a slow lighting block); a render with the RTL in the
+#     loop against the clocked reference too. And the check fails where it must: the RTL
+#     of one mode against another mode's log.
+#  3. Refusals: another format, another latency, the loop engine — exit 2, the setting
+#     named. The waveform of the unit's pins and registers.
+# Usage: rtl_test.sh SHADETLM SOURCE_DIR. Exit 77 (skipped) when the build has no RTL.
+set -u
+bin=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+passes=0
+failures=0
+ok() { echo "ok $*"; ((passes++)); }
+fail() { echo "FAIL $*"; ((failures++)); }
+
+format=$("$bin" --version 2>/dev/null | sed -n 's/^rtl: \(fixed:[0-9.]*\);.*/\1/p')
+if [[ -z $format ]]; then
+  echo "SKIP: this build has no RTL normalize unit ($("$bin" --version | grep '^rtl:'))"
+  exit 77
+fi
+modes=(exact forward-difference rsqrt0 rsqrt1 rsqrt2)
+
+# 1. Bit-exact frames.
+for scene in "$src"/golden/*/scene.json; do
+  name=$(basename "$(dirname "$scene")")
+  for mode in "${modes[@]}"; do
+    set_=(--set pipeline.normalize.mode=$mode --set pipeline.normalize.format=$format)
+    if ! "$bin" render "$scene" "${set_[@]}" -o "$tmp/kernel.exr" >"$tmp/out" 2>&1 ||
+       ! "$bin" render "$scene" "${set_[@]}" --set pipeline.normalize.impl=rtl -o "$tmp/rtl.exr" >"$tmp/out" 2>&1; then
+      fail "$name $mode: render"; tail -3 "$tmp/out" | sed 's/^/    /'; continue
+    fi
+    if "$bin" compare "$tmp/rtl.exr" "$tmp/kernel.exr" --fail 0 >"$tmp/cmp" 2>&1; then
+      ok "$name $mode: RTL frame identical to the $format kernel's"
+    else
+      fail "$name $mode: RTL frame differs from the kernel's"; tail -4 "$tmp/cmp" | sed 's/^/    /'
+    fi
+  done
+done
+"$bin" render "$src/golden/sphere/scene.json" -o "$tmp/float.exr" >/dev/null 2>&1
+"$bin" render "$src/golden/sphere/scene.json" --set pipeline.normalize.format="$format" \
+  --set pipeline.normalize.impl=rtl -o "$tmp/rtl.exr" >/dev/null 2>&1
+if ! "$bin" compare "$tmp/rtl.exr" "$tmp/float.exr" --fail 0 --layer N >/dev/null 2>&1; then
+  ok "control: the RTL's $format normals differ from float32's"
+else
+  fail "control: the RTL frame equals the float32 frame (is the format in force?)"
+fi
+
+# 2. Cycle-exact against the clocked reference, the RTL in lockstep.
+# lockstep NAME MODE SCENE [--set k=v]...: render with MODE's kernel, check with its RTL.
+lockstep() {
+  local name=$1 mode=$2 scene=$3
+  shift 3
+  if ! "$bin" render "$scene" --set pipeline.normalize.mode="$mode" "$@" -o "$tmp/f.exr" \
+       --timing-log "$tmp/t.log" >"$tmp/out" 2>&1; then
+    fail "$name: render"; tail -3 "$tmp/out" | sed 's/^/    /'; return
+  fi
+  if "$bin" timing-check "$tmp/t.log" --rtl-normalize "$mode" --show 5 >"$tmp/check" 2>&1; then
+    ok "$name: $(head -1 "$tmp/check" | cut -d: -f2-)"
+  else
+    fail "$name:"; sed 's/^/    /' "$tmp/check"
+  fi
+}
+for scene in "$src"/golden/*/scene.json; do
+  for mode in "${modes[@]}"; do lockstep "lockstep $(basename "$(dirname "$scene")") $mode" "$mode" "$scene"; done
+done
+stall=(--set pipeline.normalize.fifo_depth=1 --set pipeline.lighting.fifo_depth=1 --set pipeline.lighting.ii=5)
+for mode in "${modes[@]}"; do
+  lockstep "lockstep $mode, its output stalled" "$mode" "$src/golden/knot/scene.json" "${stall[@]}"
+done
+blocked=$(awk '$1 == "stats" && $2 == "normalize" { print $5 }' "$tmp/t.log")
+if ((blocked > 0)); then ok "the stalled configuration stalls normalize ($blocked blocked cycles)"
+else fail "the stalled configuration never blocked normalize"; fi
+lockstep "lockstep forward-difference, bump packets" forward-difference "$src/golden/bump-knot/scene.json" "${stall[@]}"
+
+# The RTL in the loop, its pipeline's cycles against the clocked reference.
+if "$bin" render "$src/golden/torus/scene.json" --set pipeline.normalize.format="$format" \
+     --set pipeline.normalize.impl=rtl --set pipeline.normalize.mode=forward-difference "${stall[@]}" \
+     -o "$tmp/f.exr" --timing-log "$tmp/t.log" >/dev/null 2>&1 &&
+   "$bin" timing-check "$tmp/t.log" >"$tmp/check" 2>&1; then
+  ok "the RTL in the loop: $(head -1 "$tmp/check" | cut -d: -f2-)"
+else
+  fail "the RTL in the loop against the clocked reference:"; sed 's/^/    /' "$tmp/check"
+fi
+
+# The check fails where the RTL is not what the log says.
+"$bin" render "$src/golden/sphere/scene.json" --set pipeline.normalize.mode=rsqrt0 -o "$tmp/f.exr" \
+  --timing-log "$tmp/t.log" >/dev/null 2>&1
+"$bin" timing-check "$tmp/t.log" --rtl-normalize rsqrt1 >"$tmp/check" 2>&1
+status=$?
+if ((status == 1)) && grep -q DIFFERENT "$tmp/check"; then ok "control: rsqrt1's RTL against rsqrt0's log differs"
+else fail "control: rsqrt1's RTL against rsqrt0's log: exit $status"; fi
+
+# 3. Refusals, each naming its setting, and the waveform.
+# refuse NAME FIELD ARGS...: exit 2, FIELD in the message, no frame.
+refuse() {
+  local name=$1 field=$2
+  shift 2
+  rm -f "$tmp/r.exr"
+  "$bin" "$@" >"$tmp/out" 2>&1
+  local status=$?
+  if ((status == 2)) && grep -q -- "$field" "$tmp/out" && [[ ! -e $tmp/r.exr ]]; then ok "refused: $name"
+  else fail "refused: $name (exit $status)"; sed 's/^/    /' "$tmp/out" | tail -3; fi
+}
+refuse "another format" pipeline.normalize.format render "$src/golden/sphere/scene.json" -o "$tmp/r.exr" \
+  --set pipeline.normalize.impl=rtl --set pipeline.normalize.format=fixed:4.20
+refuse "another latency" pipeline.normalize.impl render "$src/golden/sphere/scene.json" -o "$tmp/r.exr" \
+  --set pipeline.normalize.impl=rtl --set pipeline.normalize.format="$format" --set pipeline.normalize.latency=2
+refuse "the loop engine" pipeline.normalize.impl render "$src/golden/sphere/scene.json" -o "$tmp/r.exr" \
+  --set pipeline.normalize.impl=rtl --set pipeline.normalize.format="$format" --engine loop
+"$bin" render "$src/golden/sphere/scene.json" -o "$tmp/f.exr" --timing-log "$tmp/t.log" >/dev/null 2>&1
+sed 's/normalize/normalise/' "$tmp/t.log" >"$tmp/no-normalize.log"
+refuse "a log without normalize" block timing-check "$tmp/no-normalize.log" --rtl-normalize exact
+
+"$bin" render "$src/golden/sphere/scene.json" -o "$tmp/f.exr" --timing-log "$tmp/t.log" >/dev/null 2>&1
+if "$bin" timing-check "$tmp/t.log" --rtl-normalize exact --rtl-vcd "$tmp/rtl.vcd" >/dev/null 2>&1 &&
+   grep -q 'normalize_unit' "$tmp/rtl.vcd" && grep -q ' held_due' "$tmp/rtl.vcd" && grep -q ' out_valid' "$tmp/rtl.vcd" &&
+   ! ls "$tmp"/rtl.vcd.tmp.* >/dev/null 2>&1; then
+  ok "the RTL's waveform: $(grep -c '\$var' "$tmp/rtl.vcd") signals, $(grep -c '^#' "$tmp/rtl.vcd") time steps"
+else
+  fail "the RTL's waveform"
+fi
+
+echo "$passes passed, $failures failed"
+((failures == 0))
