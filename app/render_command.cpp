@@ -97,7 +97,7 @@ struct RenderOptions {
   std::string output = "out/frame.exr", preview, heat_map, stats, engine = "systemc";
   float heat_max = 32;
   bool compare = false, allow_nonfinite = false;
-  std::string vcd, region, triangles, timeline, timing_log;
+  std::string vcd, region, triangles, timeline, timing_log, vectors;
 };
 
 // What the run records for inspection (waveforms, timeline, traced region and triangles),
@@ -108,6 +108,7 @@ modules::Inspect inspection_of(const RenderOptions& opt, const core::Scene& scen
   if (!opt.stats.empty()) inspect.bin_cycles = 10000;  // utilization over time, in the statistics
   inspect.timeline = opt.timeline;
   inspect.timing_log = !opt.timing_log.empty();
+  inspect.vectors = opt.vectors;
   if (!opt.region.empty()) {
     parse_region(opt.region, inspect.region), inspect.region_given = true;
     if (inspect.region.x0 >= scene.camera.width || inspect.region.y0 >= scene.camera.height)
@@ -129,9 +130,10 @@ modules::Inspect inspection_of(const RenderOptions& opt, const core::Scene& scen
     throw core::InputError("--vcd", inspect.vcd, "the waveform file must end in .vcd");
   if (!modules::kTracing && (!inspect.vcd.empty() || !inspect.timeline.empty()))
     throw core::InputError("--vcd", inspect.vcd, "this build has tracing compiled out (SHADETLM_TRACING=OFF)");
-  if (opt.engine == "loop" && (!inspect.vcd.empty() || !inspect.timeline.empty() || inspect.timing_log))
+  if (opt.engine == "loop" && (!inspect.vcd.empty() || !inspect.timeline.empty() || inspect.timing_log ||
+                               !inspect.vectors.empty()))
     throw core::InputError("--engine", "loop",
-                           "the plain loop has no time: waveforms, timelines and timing logs need systemc");
+                           "waveforms, timelines, timing logs and test vectors need the systemc engine");
   return inspect;
 }
 
@@ -160,6 +162,12 @@ void check_before_simulation(const RenderOptions& opt, const core::Scene& scene,
                  {"--timeline", inspect.timeline},
                  {"--timing-log", opt.timing_log}},
                 scene.inputs);
+  if (!inspect.vectors.empty()) {
+    std::vector<std::pair<std::string, std::string>> files;
+    for (const auto& f : modules::vector_files(modules::standard_pipeline(), inspect.vectors))
+      files.push_back({"--vectors", f});
+    check_outputs(files, scene.inputs);
+  }
   // The traced pixels: the region's part of the frame.
   const modules::TraceRegion& r = inspect.region;
   const int64_t width = scene.camera.width, height = scene.camera.height;
@@ -181,6 +189,8 @@ void check_before_simulation(const RenderOptions& opt, const core::Scene& scene,
 void take_back_inspection(const modules::Inspect& inspect) {
   for (const std::string& path : {inspect.vcd, gtkw_path_of(inspect.vcd), inspect.timeline})
     if (!path.empty()) core::remove_quietly(path);
+  if (!inspect.vectors.empty())
+    for (const auto& f : modules::vector_files(modules::standard_pipeline(), inspect.vectors)) core::remove_quietly(f);
 }
 
 // Renders the scene on the engine named ("loop" or "systemc"), showing progress meanwhile.
@@ -249,6 +259,8 @@ void print_summary(const RenderOptions& opt, const core::Scene& scene, const mod
     std::cout << "  traced " << r.trace_records << " pixel outputs into " << inspect.vcd << " (view: gtkwave "
               << inspect.vcd << " " << gtkw_path_of(inspect.vcd) << ")\n";
   if (!inspect.timeline.empty()) std::cout << "  timeline: " << inspect.timeline << "\n";
+  if (!inspect.vectors.empty())
+    std::cout << "  test vectors of " << r.vector_pixels << " pixels into " << inspect.vectors << "\n";
   std::cout << "  wrote " << opt.output << (opt.preview.empty() ? "" : " and " + opt.preview)
             << (opt.heat_map.empty() ? "" : " and " + opt.heat_map)
             << (opt.stats.empty() ? "" : " and " + opt.stats) << "\n";
@@ -285,6 +297,8 @@ Command add_render_command(CLI::App& app) {
       ->check(kNotEmpty);
   cmd->add_option("--trace-triangles", opt->triangles, "triangles traced: i..j (ids in drawing order)")
       ->check(kNotEmpty);
+  cmd->add_option("--vectors", opt->vectors,
+                  "test vectors of the traced region: <folder>/<block>.in.hex and .out.hex (docs/rtl.md)");
   cmd->add_option("--timeline", opt->timeline, "transaction timeline as Chrome trace-event JSON (Perfetto)")
       ->check(kNotEmpty);
   cmd->add_option("--timing-log", opt->timing_log,

@@ -16,6 +16,8 @@ packages=(
   libcli11-dev        # command line
   valgrind            # scripts/bench.sh: instruction counts
   python3             # report scripts
+  verilator           # RTL in the loop (docs/rtl.md): the normalize unit verilated into SystemC
+  yosys               # its synthesis to generic cells (scripts/synth.sh, the rtl test)
 )
 # Packages a script needs beyond these (scripts/plot.sh: gnuplot-nox) come as arguments.
 packages+=("$@")

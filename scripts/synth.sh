@@ -3,30 +3,39 @@
 # printed here: Yosys synthesizes rtl/normalize to generic cells for each mode at the
 # widths the format report names (docs/numerical-stability.md: fixed:1.12, the fewest
 # bits that keep the long-spans scene within 1/255; fixed:3.16, tiny normals within
-# 2^-12; fixed:7.20, a margin for the golden scenes' perspective normals), and prints
+# 2^-12), and prints
 #   - the datapath alone (normalize_datapath: one pixel's arithmetic, combinational):
 #     cells and Yosys's CMOS transistor estimate (`stat -tech cmos`);
-#   - the whole unit at the mode's latency and II: its flip-flops (the radicand's
-#     registers and the held pixels, ⌈(latency + 1) / II⌉ of them);
+#   - the unit around it at the mode's latency and II (the datapath a black box, no tag
+#     bits): its flip-flops — the radicand's registers and the pixels held for the
+#     latency, ⌈(latency + 1) / II⌉ of them;
 #   - beside them, from renders of the same configuration: the model's operations a
 #     pixel (the block's declared counts) and the normal's largest error against the
 #     golden model on the long-spans stress scene (`render --compare-reference`, layer N).
-# Usage: scripts/synth.sh [--quick] [--doc]
-#   --quick  fixed:1.12 only (about 2 minutes; the whole table takes about 15)
-#   --doc    the table into docs/rtl.md between its <!-- synth:1 --> markers
+# Usage: scripts/synth.sh [--quick] [--doc] [--formats "fixed:I.F …"]
+#   --quick    fixed:1.12 only (about 10 minutes on 2 cores; the table about 40: Yosys's
+#              ABC pass on the dividers and square roots dominates, and grows fast with
+#              the width)
+#   --doc      the table into docs/rtl.md between its <!-- synth:1 --> markers
+# A datapath's synthesis is kept in out/synth and reused while the RTL is unchanged.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh" yosys
 bin=${SHADETLM:-$root/build/app/shadetlm}
 [[ -x $bin ]] || "$root/scripts/build.sh" >/dev/null
-formats="fixed:1.12 fixed:3.16 fixed:7.20"
+formats="fixed:1.12 fixed:3.16"
 doc=0
-for a in "$@"; do
-  case $a in
+while (($#)); do
+  case $1 in
     --quick) formats="fixed:1.12" ;;
     --doc) doc=1 ;;
-    *) echo "usage: scripts/synth.sh [--quick] [--doc]" >&2; exit 2 ;;
+    --formats) formats=${2:?--formats needs a list}; shift ;;
+    *) echo "usage: scripts/synth.sh [--quick] [--doc] [--formats \"fixed:I.F …\"]" >&2; exit 2 ;;
   esac
+  shift
+done
+for f in $formats; do
+  [[ $f =~ ^fixed:[0-9]+\.[1-9][0-9]*$ ]] || { echo "synth.sh: $f: formats are fixed:I.F" >&2; exit 2; }
 done
 out=$root/out/synth
 mkdir -p "$out"
@@ -34,22 +43,31 @@ rtl=$root/rtl/normalize
 # mode index latency II: the model's defaults (rtl/CMakeLists.txt builds the same).
 modes=("exact 0 40 3" "forward-difference 1 32 3" "rsqrt0 2 21 1" "rsqrt1 3 37 1" "rsqrt2 4 53 1")
 
-# synth FORMAT MODE INDEX LATENCY II: Yosys's statistics of the datapath and the unit.
+# synth FORMAT MODE INDEX LATENCY II: Yosys's statistics of the datapath (reused while
+# the RTL is older than its log) and of the unit around it.
 synth() {
   local format=$1 mode=$2 index=$3 latency=$4 ii=$5 ib fb
   ib=${format#fixed:}; ib=${ib%.*}; fb=${format#*.}
-  local tag="$mode.$format"
-  for top in normalize_datapath normalize_unit; do
-    local params="-set IBITS $ib -set FBITS $fb -set MODE $index"
-    [[ $top == normalize_unit ]] && params+=" -set LATENCY $latency -set II $ii"
-    cat >"$out/$tag.$top.ys" <<EOF
-read_verilog -sv $rtl/normalize_unit.sv $rtl/normalize_datapath.sv $rtl/fx_isqrt.sv
-chparam $params $top
-synth -top $top -flatten
+  local tag="$mode.$format" log
+  log=$out/$tag.normalize_datapath.log
+  if [[ ! -s $log || $rtl/normalize_datapath.sv -nt $log || $rtl/fx_isqrt.sv -nt $log ]] ||
+     ! grep -q "Estimated number of transistors" "$log"; then
+    cat >"$out/$tag.normalize_datapath.ys" <<EOF
+read_verilog -sv $rtl/normalize_datapath.sv $rtl/fx_isqrt.sv
+chparam -set IBITS $ib -set FBITS $fb -set MODE $index normalize_datapath
+synth -top normalize_datapath -flatten
 stat -tech cmos
 EOF
-    yosys -q -l "$out/$tag.$top.log" "$out/$tag.$top.ys" >/dev/null
-  done
+    yosys -q -l "$log.tmp" "$out/$tag.normalize_datapath.ys" >/dev/null && mv "$log.tmp" "$log"
+  fi
+  cat >"$out/$tag.normalize_unit.ys" <<EOF
+read_verilog -sv -lib $rtl/normalize_datapath.sv
+read_verilog -sv $rtl/normalize_unit.sv
+chparam -set IBITS $ib -set FBITS $fb -set MODE $index -set LATENCY $latency -set II $ii -set TAG_W 1 normalize_unit
+synth -top normalize_unit -flatten
+stat -tech cmos
+EOF
+  yosys -q -l "$out/$tag.normalize_unit.log" "$out/$tag.normalize_unit.ys" >/dev/null
 }
 export -f synth
 export out rtl
@@ -80,7 +98,7 @@ def render(mode, fmt):
     return ops, s["error"]["n"]["max"]
 
 print("| mode | format | datapath cells | datapath transistors | unit flip-flops | latency / II |"
-      " model ops a pixel | normal error, max |")
+      " model ops a pixel | normal error, max (long-spans) |")
 print("|---|---|---:|---:|---:|---|---:|---:|")
 timing = {"exact": "40 / 3", "forward-difference": "32 / 3", "rsqrt0": "21 / 1", "rsqrt1": "37 / 1", "rsqrt2": "53 / 1"}
 for fmt in formats:

@@ -131,5 +131,43 @@ else
   fail "the RTL's waveform"
 fi
 
+# 4. Test vectors: the kernel's words, through the RTL testbench (Verilator --binary).
+"$bin" render "$src/golden/bump-sphere/scene.json" -o "$tmp/f.exr" --set pipeline.normalize.format="$format" \
+  --set pipeline.normalize.mode=forward-difference --vectors "$tmp/vec" --trace-region 40,30,80,60 >/dev/null 2>&1
+lines=$(grep -vc '^//' "$tmp/vec/normalize.in.hex")
+export RTL_TB_DIR=$tmp/tb-build
+if ((lines > 500)) && "$src/scripts/rtl-vectors.sh" "$tmp/vec" >"$tmp/tb" 2>&1 && grep -q " 0 different" "$tmp/tb"; then
+  ok "test vectors through the RTL testbench: $(cat "$tmp/tb")"
+else
+  fail "test vectors through the RTL testbench:"; sed 's/^/    /' "$tmp/tb" | tail -5
+fi
+# One output word changed (its first digit), the rest as they were.
+awk '!/^\/\// && !done { $0 = (substr($0, 1, 1) == "0" ? "1" : "0") substr($0, 2); done = 1 } { print }' \
+  "$tmp/vec/normalize.out.hex" >"$tmp/changed" && mv "$tmp/changed" "$tmp/vec/normalize.out.hex"
+if "$src/scripts/rtl-vectors.sh" "$tmp/vec" >"$tmp/tb" 2>&1; then fail "control: a changed vector went unnoticed"
+else ok "control: a changed vector is found ($(grep -c 'pixel' "$tmp/tb") reported)"; fi
+
+# 5. Synthesis (scripts/synth.sh makes the table): Yosys reads the RTL and maps it to
+# generic cells without latches; the unit keeps its latency's pixels in flip-flops.
+if command -v yosys >/dev/null; then
+  r=$src/rtl/normalize
+  yosys -q -l "$tmp/dp.log" -p "read_verilog -sv $r/normalize_datapath.sv $r/fx_isqrt.sv;
+    chparam -set IBITS 1 -set FBITS 12 -set MODE 2 normalize_datapath; synth -top normalize_datapath -flatten;
+    stat -tech cmos" >/dev/null 2>&1
+  yosys -q -l "$tmp/unit.log" -p "read_verilog -sv -lib $r/normalize_datapath.sv; read_verilog -sv $r/normalize_unit.sv;
+    chparam -set IBITS 1 -set FBITS 12 -set MODE 2 -set LATENCY 21 -set II 1 -set TAG_W 1 normalize_unit;
+    synth -top normalize_unit -flatten; stat" >/dev/null 2>&1
+  cells=$(grep -o 'Number of cells: *[0-9]*' "$tmp/dp.log" | tail -1 | grep -o '[0-9]*$')
+  flops=$(awk '/\$_(S?DFF)[A-Z_0-9]*_ / { n += $2 } END { print n + 0 }' "$tmp/unit.log")
+  # 22 pixels held (⌈(21 + 1) / 1⌉), each 3 words of 14 bits: 924 flip-flops at least.
+  if ((${cells:-0} > 100 && flops >= 924)) && ! grep -q '\$_DLATCH\|Latch inferred' "$tmp/dp.log" "$tmp/unit.log"; then
+    ok "synthesis: rsqrt0 at fixed:1.12, datapath $cells cells, unit $flops flip-flops, no latches"
+  else
+    fail "synthesis: datapath ${cells:-no} cells, unit $flops flip-flops"; tail -5 "$tmp/dp.log" | sed 's/^/    /'
+  fi
+else
+  fail "synthesis: no yosys (scripts/setup.sh installs it)"
+fi
+
 echo "$passes passed, $failures failed"
 ((failures == 0))

@@ -8,6 +8,7 @@
 // packet's delay annotation is the cycle the raster sent it, unchanged along the chain.
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -24,6 +25,7 @@
 #include "shadetlm/modules/common/timeline.hpp"
 #include "shadetlm/modules/common/timing.hpp"
 #include "shadetlm/modules/common/trace.hpp"
+#include "shadetlm/modules/common/vectors.hpp"
 
 namespace shadetlm::modules {
 
@@ -78,6 +80,10 @@ class BlockInfo : public TimedObserver {
   void attach(Tracer* tracer, int probe, Timeline* timeline, uint32_t track, const TraceRegion* filter) {
     tracer_ = tracer, probe_ = probe, timeline_ = timeline, track_ = track, filter_ = filter;
   }
+  // Test vectors (modules/common/vectors.hpp): what a block that has them writes, and
+  // where (the region and triangles of attach()'s filter).
+  virtual std::optional<VectorLayout> vector_layout() const { return std::nullopt; }
+  void attach_vectors(VectorFile* vectors) { vectors_ = vectors; }
 
  protected:
   bool triangle_kept(uint32_t id) const {
@@ -85,6 +91,7 @@ class BlockInfo : public TimedObserver {
   }
 
   const TraceRegion* filter_ = nullptr;
+  VectorFile* vectors_ = nullptr;
   Tracer* tracer_ = nullptr;
   int probe_ = -1;
   Timeline* timeline_ = nullptr;
@@ -117,6 +124,11 @@ class BlockInfo : public TimedObserver {
     }
   }
 };
+
+// Kernels with test vectors have vector_layout(), vector_in() and vector_out().
+template <class K, class = void> struct has_vectors : std::false_type {};
+template <class K>
+struct has_vectors<K, std::void_t<decltype(std::declval<const K&>().vector_layout())>> : std::true_type {};
 
 // Whether a transaction is the end of a pass (PassEnd) rather than a packet: a
 // platform's driver that leaves the command unset (TLM_IGNORE_COMMAND) still sends
@@ -171,6 +183,10 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
   }
   tlm::tlm_target_socket<32>* input() override { return &in; }
   void bind_output(tlm::tlm_target_socket<32>& next) override { out.bind(next); }
+  std::optional<VectorLayout> vector_layout() const override {
+    if constexpr (has_vectors<Kernel>::value) return kernel_.vector_layout();
+    return std::nullopt;
+  }
 
   void timed(const SpanPacket& p) override {  // its waveforms and timeline slice
     if (!kTracing || !line_ || p.count == 0 || !worked_) return;
@@ -210,7 +226,10 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
       traced_ = tracer_ && tracer_->region().covers(p.y, p.x0, p.x0 + p.count, p.tri->id);
       if (tracer_) kernel_.set_capture(traced_);
     }
+    const bool vectors = has_vectors<Kernel>::value && vectors_ && triangle_kept(p.tri->id);
+    if (vectors) vector_inputs(p);
     kernel_.process(p);
+    if (vectors) vector_outputs(p);
     ++stats_.packets;
     stats_.pixels += uint64_t(p.count);
     // The waveforms' values now: a later block may rewrite the packet's arrays (normalize
@@ -232,6 +251,28 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
     if (next_) next_->b_transport(trans, delay);
   }
 
+  // Test vectors: every packet that touches the region, whole (a block may carry state
+  // from a packet's first pixel to the next: the forward-difference radicand) — its
+  // words in (before the kernel), then out.
+  bool in_vector_region(const SpanPacket& p) const { return !filter_ || filter_->covers(p.y, p.x0, p.x0 + p.count, p.tri->id); }
+  void vector_inputs(const SpanPacket& p) {
+    if constexpr (has_vectors<Kernel>::value) {
+      vector_in_.resize(size_t(kSpanMax) * kMaxVectorFields);
+      if (in_vector_region(p))
+        for (int i = 0; i < p.count; ++i) kernel_.vector_in(p, i, &vector_in_[size_t(i) * kMaxVectorFields]);
+    }
+  }
+  void vector_outputs(const SpanPacket& p) {
+    if constexpr (has_vectors<Kernel>::value) {
+      uint64_t out[kMaxVectorFields];
+      if (in_vector_region(p))
+        for (int i = 0; i < p.count; ++i) {
+          kernel_.vector_out(p, i, out);
+          vectors_->add(p.x0 + i, p.y, &vector_in_[size_t(i) * kMaxVectorFields], out);
+        }
+    }
+  }
+
   // A block on its own (a testbench, a platform of one's own: no PixelLine) still counts
   // its busy cycles, II · work a pixel; its times need a pipeline.
   void count_alone(Work w, int count) {
@@ -246,6 +287,7 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
   double traced_values_[kSpanMax][16] = {};  // its waveform values, for the traced pixels
   BlockStats stats_;
   BlockTimes alone_;
+  std::vector<uint64_t> vector_in_;  // a packet's vector inputs, while vectors are written
   tlm::tlm_fw_transport_if<>* next_ = nullptr;         // the next block
   tlm::tlm_fw_transport_if<>* packet_next_ = nullptr;  // the same, unless this block ends its pass
 };

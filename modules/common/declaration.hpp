@@ -103,6 +103,8 @@ struct BlockDecl {
   // writes) through a cache of its own, <name>.cache.{size,line,ways,layout}, and may
   // hold <name>.miss_queue pixels waiting for memory.
   bool memory = false;
+  // Its kernel writes test vectors (`render --vectors`, modules/common/vectors.hpp).
+  bool vectors = false;
 };
 
 // A memory client's cache under the DRAM model; none under ideal memory. Throws

@@ -75,6 +75,7 @@ struct RenderResult {
   std::vector<BlockReport> blocks;  // elaborated blocks, in pipeline order
   uint64_t bin_cycles = 0;          // of the blocks' busy_per_bin (0: none)
   uint64_t trace_records = 0;       // pixels written to the VCD, all blocks
+  uint64_t vector_pixels = 0;       // pixels written as test vectors, all blocks
   std::string timing_log;           // Inspect::timing_log: the main pass's times (modules/common/timing.hpp)
   double precompute_s = 0;          // maps built when the pipeline was (not in wall_s)
   std::optional<DramTiming> dram;   // the DRAM model's (none: ideal memory)

@@ -42,6 +42,7 @@ BlockDecl normalize_block() {
                 return std::make_unique<SpanBlock<NormalizeKernel>>(mode, ctx.format());
               }};
   d.units = [](const BlockContext& ctx) { return normalize_units(parse_normalize_mode(ctx.string("mode")), ctx.settings); };
+  d.vectors = true;  // the words at the pins of rtl/normalize/normalize_unit.sv
   return d;
 }
 

@@ -1,5 +1,6 @@
 #include "shadetlm/modules/normalize/normalize_kernel.hpp"
 
+#include <cstring>
 #include <stdexcept>
 #include <type_traits>
 
@@ -54,6 +55,41 @@ void NormalizeKernel::process(SpanPacket& p) {
 Ops NormalizeKernel::ops() const {
   return normalize_ops_per_pixel(mode_) * tally_.pixels[0] + normalize_ops_per_span(mode_) * tally_.packets[0] +
          normalize_ops_per_pixel_direct_rsqrt() * tally_.pixels[1];
+}
+
+uint64_t NormalizeKernel::word(float v) const {
+  const core::NumberFormat& f = numbers_.format;
+  if (f.kind != core::NumberFormat::Kind::Fixed) {
+    if (f.kind == core::NumberFormat::Kind::Float16) v = float(Half(v));  // its value, as float32 bits
+    uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    return bits;
+  }
+  NumberContext context(f);  // (its own: the vectors' conversions are not the block's events)
+  NumberScope scope(context);
+  return uint64_t(Fixed(v).raw()) & (~uint64_t(0) >> (63 - f.int_bits - f.frac_bits));
+}
+
+VectorLayout NormalizeKernel::vector_layout() const {
+  const core::NumberFormat& f = numbers_.format;
+  const int w = f.kind == core::NumberFormat::Kind::Fixed ? 1 + f.int_bits + f.frac_bits : 32;
+  std::string about = "format " + f.name() + ", mode " + normalize_mode_names()[size_t(mode_)];
+  if (f.kind != core::NumberFormat::Kind::Fixed) about += " (words: float32 bits of the format's values)";
+  return {about,
+          {{"first", 1}, {"direct", 1}, {"nx", w}, {"ny", w}, {"nz", w}, {"dhx", w}, {"dhy", w}, {"dhz", w}, {"c", w}},
+          {{"nx", w}, {"ny", w}, {"nz", w}}};
+}
+
+void NormalizeKernel::vector_in(const SpanPacket& p, int i, uint64_t* words) const {
+  const TriangleSetup& t = *p.tri;
+  words[0] = i == 0;
+  words[1] = mode_ == NormalizeMode::ForwardDifference && core::bump_path(t.material->path);
+  for (int k = 0; k < 3; ++k) words[2 + k] = word(p.n[k][i]), words[5 + k] = word(t.n[k].ax);
+  words[8] = word(t.c);
+}
+
+void NormalizeKernel::vector_out(const SpanPacket& p, int i, uint64_t* words) const {
+  for (int k = 0; k < 3; ++k) words[k] = word(p.n[k][i]);
 }
 
 template <class T>

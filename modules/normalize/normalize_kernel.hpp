@@ -22,6 +22,7 @@
 
 #include "shadetlm/modules/common/number.hpp"
 #include "shadetlm/modules/common/packet.hpp"
+#include "shadetlm/modules/common/vectors.hpp"
 
 namespace shadetlm::modules {
 
@@ -167,6 +168,11 @@ class NormalizeKernel {
   // packets) and the normalized normal.
   void set_capture(bool on) { capture_ = on; }
   static std::vector<std::string> trace_names() { return {"radicand", "n_x", "n_y", "n_z"}; }
+  // Test vectors: the words at the RTL unit's pins (rtl/normalize/normalize_unit.sv) —
+  // in first, direct, the normal, ΔN_H and c; out the unit normal — in the block's format.
+  VectorLayout vector_layout() const;
+  void vector_in(const SpanPacket& p, int i, uint64_t* words) const;
+  void vector_out(const SpanPacket& p, int i, uint64_t* words) const;
   void trace(const SpanPacket& p, int i, double* out) const {
     out[0] = radicand_[i];
     for (int c = 0; c < 3; ++c) out[1 + c] = p.n[c][i];
@@ -174,6 +180,7 @@ class NormalizeKernel {
 
  private:
   template <class T> void normalize_as(SpanPacket& p, bool direct);
+  uint64_t word(float v) const;  // v at the pins: the format's raw word, or float32 bits
 
   NormalizeMode mode_;
   uint16_t seeded_[kSpanMax];

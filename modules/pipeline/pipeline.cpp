@@ -11,6 +11,7 @@
 #include <tlm_utils/tlm_quantumkeeper.h>
 
 #include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/output.hpp"
 
 namespace shadetlm::modules {
 
@@ -147,6 +148,12 @@ class Top : public sc_core::sc_module {
     const TraceRegion* filter = inspect.region_given ? &region_ : nullptr;
     if (!inspect.vcd.empty()) tracer_ = std::make_unique<Tracer>(region_, period_);
     Timeline* timeline = inspect.timeline.empty() ? nullptr : &timeline_;
+    if (!inspect.vectors.empty())
+      for (auto& m : modules_)
+        if (auto layout = m->vector_layout()) {
+          vectors_.push_back(std::make_unique<VectorFile>(m->block_name(), *layout));
+          m->attach_vectors(vectors_.back().get());
+        }
     for (size_t i = 0; i < modules_.size(); ++i) {
       const auto names = pipeline.blocks()[i].block->trace_names();
       const int probe = tracer_ && !names.empty() ? tracer_->add_probe(pipeline.blocks()[i].name, names) : -1;
@@ -160,6 +167,7 @@ class Top : public sc_core::sc_module {
   const std::vector<std::unique_ptr<BlockInfo>>& modules() const { return modules_; }
   Tracer* tracer() { return tracer_.get(); }
   Timeline& timeline_slices() { return timeline_; }
+  const std::vector<std::unique_ptr<VectorFile>>& vectors() const { return vectors_; }
   PixelLine& line() { return *line_; }
   // The timeline's DRAM counter, without a bin asked for: a point every this many cycles.
   static constexpr uint64_t kTimelineDramBin = 256;
@@ -174,6 +182,7 @@ class Top : public sc_core::sc_module {
   std::vector<std::unique_ptr<BlockInfo>> modules_;
   TraceRegion region_;
   std::unique_ptr<Tracer> tracer_;
+  std::vector<std::unique_ptr<VectorFile>> vectors_;
   Timeline timeline_;
   std::unique_ptr<PixelLine> line_;
   std::unique_ptr<TimingLog> log_;
@@ -272,7 +281,25 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
     if (inspect.bin_cycles > 0) r.dram_bytes_per_bin = dram->bytes_per_bin();
   }
   if (!inspect.timeline.empty()) top.timeline_slices().write(inspect.timeline, top.names(), clock_mhz);
+  if (!top.vectors().empty()) {
+    std::filesystem::create_directories(inspect.vectors);
+    core::OutputSet files;  // a block's two files together or not at all
+    for (const auto& v : top.vectors()) {
+      for (bool in : {true, false}) files.write(vector_path(inspect.vectors, v->block(), in), v->text(in));
+      r.vector_pixels += v->pixels();
+    }
+    files.commit();
+  }
   return r;
+}
+
+std::vector<std::string> vector_files(const PipelineDecl& declaration, const std::string& folder) {
+  std::vector<std::string> files;
+  for (const auto& pass : declaration.passes)
+    for (const auto& b : pass.blocks)
+      if (b.vectors)
+        for (bool in : {true, false}) files.push_back(vector_path(folder, b.name, in));
+  return files;
 }
 
 void write_gtkw(const std::string& path, const std::string& vcd, const std::vector<Tracer::ProbeInfo>& probes,

@@ -63,10 +63,15 @@ struct Inspect {
   TraceRegion region;         // pixels and triangles traced; also limits the timeline
   bool region_given = false;  // else the whole frame is traced
   std::string timeline;       // Chrome trace-event JSON
+  std::string vectors;        // test vectors of the region: <folder>/<block>.{in,out}.hex (created)
   bool timing_log = false;    // keep every pixel's times at every block (RenderResult::timing_log)
   uint64_t bin_cycles = 0;      // utilization histogram bin (0: not kept; it costs a little per packet)
   std::function<void(double)> progress;  // share of the triangles set up, now and then (a progress bar)
 };
+
+// The blocks of `declaration` that write test vectors, and so the files --vectors
+// writes in `folder` (modules/common/vectors.hpp).
+std::vector<std::string> vector_files(const PipelineDecl& declaration, const std::string& folder);
 
 RenderResult render_loop(const core::Scene& scene, const Inspect& inspect = {});
 RenderResult render_loop(const core::Scene& scene, const PipelineDecl& declaration, const Inspect& inspect = {});
