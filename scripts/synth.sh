@@ -93,7 +93,7 @@ def render(mode, fmt):
                     "--set", f"pipeline.normalize.mode={mode}", "--set", f"pipeline.normalize.format={fmt}"],
                    check=True, capture_output=True)
     s = json.load(open(f"{out}/s.json"))
-    block = next(b for b in s["blocks"] if b["name"] == "normalize")
+    block = s["blocks"]["normalize"]
     ops = sum(v for k, v in block["ops"].items()) / block["pixels"]
     return ops, s["error"]["n"]["max"]
 
