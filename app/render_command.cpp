@@ -153,21 +153,18 @@ void check_before_simulation(const RenderOptions& opt, const core::Scene& scene,
       }))
     throw core::InputError("--heat-map", opt.heat_map, "the scene has no parallax material: no iterations to map");
   require_output("--output", opt.output);
-  check_outputs({{"--output", opt.output},
-                 {"--preview", opt.preview},
-                 {"--heat-map", opt.heat_map},
-                 {"--stats", opt.stats},
-                 {"--vcd", inspect.vcd},
-                 {"--vcd", gtkw_path_of(inspect.vcd)},
-                 {"--timeline", inspect.timeline},
-                 {"--timing-log", opt.timing_log}},
-                scene.inputs);
-  if (!inspect.vectors.empty()) {
-    std::vector<std::pair<std::string, std::string>> files;
+  std::vector<std::pair<std::string, std::string>> outputs = {{"--output", opt.output},
+                                                              {"--preview", opt.preview},
+                                                              {"--heat-map", opt.heat_map},
+                                                              {"--stats", opt.stats},
+                                                              {"--vcd", inspect.vcd},
+                                                              {"--vcd", gtkw_path_of(inspect.vcd)},
+                                                              {"--timeline", inspect.timeline},
+                                                              {"--timing-log", opt.timing_log}};
+  if (!inspect.vectors.empty())
     for (const auto& f : modules::vector_files(modules::standard_pipeline(), inspect.vectors))
-      files.push_back({"--vectors", f});
-    check_outputs(files, scene.inputs);
-  }
+      outputs.push_back({"--vectors", f});
+  check_outputs(outputs, scene.inputs);
   // The traced pixels: the region's part of the frame.
   const modules::TraceRegion& r = inspect.region;
   const int64_t width = scene.camera.width, height = scene.camera.height;
@@ -176,6 +173,18 @@ void check_before_simulation(const RenderOptions& opt, const core::Scene& scene,
                           : inspect.region_given ? uint64_t(std::max<int64_t>(across, 0) * std::max<int64_t>(down, 0))
                                                  : uint64_t(width * height);
   take_run_memory(scene, true, opt.compare, traced);
+  // Test vectors come from the kernels, and are kept in memory (about 100 bytes a pixel).
+  if (!inspect.vectors.empty()) {
+    const core::Settings settings = scene.pipeline.resolve(modules::standard_pipeline().all_settings());
+    if (settings.string("normalize.impl") == "rtl")
+      throw core::InputError("--vectors", inspect.vectors,
+                             "test vectors are the kernel's words: render with pipeline.normalize.impl=kernel");
+    const uint64_t pixels = inspect.region_given ? uint64_t(std::max<int64_t>(across, 0) * std::max<int64_t>(down, 0))
+                                                 : uint64_t(width * height);
+    if (pixels > (uint64_t(1) << 20))
+      throw core::InputError("--vectors", inspect.vectors,
+                             "test vectors are for regions of at most 1048576 pixels: give a --trace-region");
+  }
   // The log is kept in memory during the run (about 100 bytes a pixel and block): for
   // the small frames the timing check is for.
   constexpr int64_t kMaxLoggedPixels = 1 << 20;
@@ -298,7 +307,8 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--trace-triangles", opt->triangles, "triangles traced: i..j (ids in drawing order)")
       ->check(kNotEmpty);
   cmd->add_option("--vectors", opt->vectors,
-                  "test vectors of the traced region: <folder>/<block>.in.hex and .out.hex (docs/rtl.md)");
+                  "test vectors of the traced region: <folder>/<block>.in.hex and .out.hex (docs/rtl.md)")
+      ->check(kNotEmpty);
   cmd->add_option("--timeline", opt->timeline, "transaction timeline as Chrome trace-event JSON (Perfetto)")
       ->check(kNotEmpty);
   cmd->add_option("--timing-log", opt->timing_log,

@@ -21,6 +21,27 @@
 
 namespace shadetlm::app {
 
+#ifdef SHADETLM_HAVE_RTL
+namespace {
+// The log can be checked with the RTL unit of `mode`: it has a normalize block of the
+// unit's timing, and (forward-difference, which seeds at a packet's first pixel) k records.
+void check_rtl_log(const timing_reference::Workload& w, const std::string& log, const std::string& mode,
+                   rtl::UnitTiming unit) {
+  const auto block = std::find_if(w.blocks.begin(), w.blocks.end(), [](const auto& b) { return b.name == "normalize"; });
+  if (block == w.blocks.end()) throw core::InputError(log, "block", "the log has no normalize block for --rtl-normalize");
+  if (block->latency != unit.latency || block->ii != unit.ii)
+    throw core::InputError(log, "block normalize",
+                           "latency " + std::to_string(block->latency) + ", II " + std::to_string(block->ii) +
+                               "; the RTL unit of mode " + mode + " has latency " + std::to_string(unit.latency) +
+                               ", II " + std::to_string(unit.ii) + " (render with pipeline.normalize.mode=" + mode +
+                               " and the default units)");
+  if (mode == "forward-difference" && !w.pixels.empty() &&
+      std::none_of(w.pixels.begin(), w.pixels.end(), [](const auto& p) { return p.first; }))
+    throw core::InputError(log, "k", "no k records (where packets start): a log of an older build? render again");
+}
+}  // namespace
+#endif
+
 Command add_timing_check_command(CLI::App& app) {
   auto log = std::make_shared<std::string>();
   auto show = std::make_shared<size_t>(10);
@@ -46,10 +67,9 @@ Command add_timing_check_command(CLI::App& app) {
                 check_outputs({{"--rtl-vcd", *rtl_vcd}}, {*log});
                 vcd = std::make_unique<core::Temporary>(*rtl_vcd);
               }
-              if (std::none_of(w.blocks.begin(), w.blocks.end(), [](const auto& b) { return b.name == "normalize"; }))
-                throw core::InputError(*log, "block", "the log has no normalize block for --rtl-normalize");
-              pins = rtl::make_normalize_unit_pins(int(modules::parse_normalize_mode(*rtl_mode)),
-                                                   vcd ? vcd->path() : std::string());
+              const int mode = int(modules::parse_normalize_mode(*rtl_mode));
+              check_rtl_log(w, *log, *rtl_mode, rtl::normalize_unit_timing(mode));
+              pins = rtl::make_normalize_unit_pins(mode, vcd ? vcd->path() : std::string());
 #else
               throw core::InputError("--rtl-normalize", *rtl_mode,
                                      "this build has no RTL (Verilator was not found when it was configured)");

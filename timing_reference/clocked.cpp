@@ -360,6 +360,9 @@ class PinsSpanUnit : public Unit {
     }
     if (out_.valid.read()) {
       const size_t item = size_t(out_.data.read());
+      if (item >= handed->size())  // (a unit that puts out what it was never given)
+        throw std::logic_error(spec_.name + ": the unit's pins put out item " + std::to_string(item) + ", of " +
+                               std::to_string(handed->size()));
       if (valid && (*valid)[item] < 0) (*valid)[item] = t;
       if (out) (*handed)[item] = t, last = t, ++handed_count;
     }

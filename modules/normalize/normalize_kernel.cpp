@@ -89,7 +89,11 @@ void NormalizeKernel::vector_in(const SpanPacket& p, int i, uint64_t* words) con
 }
 
 void NormalizeKernel::vector_out(const SpanPacket& p, int i, uint64_t* words) const {
-  for (int k = 0; k < 3; ++k) words[k] = word(p.n[k][i]);
+  const core::NumberFormat& f = numbers_.format;
+  for (int k = 0; k < 3; ++k)
+    words[k] = f.kind == core::NumberFormat::Kind::Fixed
+                   ? uint64_t(raw_out_[k][i]) & (~uint64_t(0) >> (63 - f.int_bits - f.frac_bits))
+                   : word(p.n[k][i]);
 }
 
 template <class T>
@@ -104,7 +108,10 @@ void NormalizeKernel::normalize_as(SpanPacket& p, bool direct) {
       for (int i = 0; i < p.count; ++i) n[c][i] = T(p.n[c][i]);
     normalize_span(n[0], n[1], n[2], p.count, dh, T(t.c), mode_, direct);
     for (int c = 0; c < 3; ++c)
-      for (int i = 0; i < p.count; ++i) p.n[c][i] = float(n[c][i]);
+      for (int i = 0; i < p.count; ++i) {
+        p.n[c][i] = float(n[c][i]);
+        if constexpr (std::is_same_v<T, Fixed>) raw_out_[c][i] = n[c][i].raw();  // (wider than a float's)
+      }
   }
 }
 

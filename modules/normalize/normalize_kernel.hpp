@@ -189,6 +189,7 @@ class NormalizeKernel {
   uint64_t nonfinite_ = 0;
   bool capture_ = false;
   float radicand_[kSpanMax] = {};
+  int64_t raw_out_[3][kSpanMax] = {};  // fixed point: the last packet's results, as raw words (vectors)
 };
 
 }  // namespace shadetlm::modules

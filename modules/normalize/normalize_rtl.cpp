@@ -174,7 +174,8 @@ void NormalizeRtlKernel::process(SpanPacket& p) {
   if (p.count == 0) return;
   if (!sc_core::sc_is_running() ||
       sc_core::sc_get_current_process_handle().proc_kind() != sc_core::SC_THREAD_PROC_)
-    throw core::InputError(scene_file_, kSetting, "rtl runs in the SystemC engine only (not --engine loop)");
+    throw core::InputError(scene_file_, kSetting,
+                           "rtl runs in the SystemC pipeline only (not in the plain loop: --engine loop, bench)");
   const TriangleSetup& t = *p.tri;
   const bool direct = mode_ == NormalizeMode::ForwardDifference && core::bump_path(t.material->path);
   NumberScope scope(numbers_);

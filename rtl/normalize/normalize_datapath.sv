@@ -16,7 +16,8 @@ module normalize_datapath #(
 );
   localparam integer W = 1 + IBITS + FBITS;  // bits of a word
   localparam integer F = FBITS;
-  localparam integer WIDE = 2 * W + F + 4;   // holds every intermediate result
+  // Holds every intermediate result, and a float32 significand shifted (from_float_bits).
+  localparam integer WIDE = 2 * W + F + 4 > 48 ? 2 * W + F + 4 : 48;
 
   localparam [W-1:0] MAX = {1'b0, {(W - 1) {1'b1}}};
   localparam [W-1:0] MIN = {1'b1, {(W - 1) {1'b0}}};

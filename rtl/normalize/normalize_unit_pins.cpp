@@ -79,4 +79,9 @@ std::unique_ptr<timing_reference::UnitPins> make_normalize_unit_pins(int mode, c
   }
 }
 
+UnitTiming normalize_unit_timing(int mode) {
+  if (mode < 0 || mode > 4) throw std::invalid_argument("no RTL normalize unit of mode " + std::to_string(mode));
+  return {kNormalizeTiming[mode].latency, kNormalizeTiming[mode].ii};
+}
+
 }  // namespace shadetlm::rtl

@@ -2,6 +2,7 @@
 // The RTL normalize unit (normalize_unit.sv, verilated) as the clocked timing
 // reference's unit for the normalize block (timing_reference::UnitPins; docs/rtl.md,
 // "In lockstep"): `shadetlm timing-check LOG --rtl-normalize MODE`.
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -13,5 +14,11 @@ namespace shadetlm::rtl {
 // with `vcd` not empty, its pins and registers are traced to that file, a nanosecond a
 // cycle (the reference's clock). Throws std::invalid_argument if this build has no RTL.
 std::unique_ptr<timing_reference::UnitPins> make_normalize_unit_pins(int mode, const std::string& vcd);
+
+// The latency and II the unit of mode `mode` was built with (rtl/CMakeLists.txt).
+struct UnitTiming {
+  int64_t latency, ii;
+};
+UnitTiming normalize_unit_timing(int mode);
 
 }  // namespace shadetlm::rtl

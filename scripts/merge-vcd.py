@@ -1,0 +1,159 @@
+#!/usr/bin/env python3
+"""One waveform of the pipeline's blocks and the RTL normalize unit (docs/rtl.md,
+"Waveforms"): merges the VCD of `shadetlm render --vcd` with the one of
+`shadetlm timing-check --rtl-normalize M --rtl-vcd` made from the same render's timing
+log — the same cycles, as the timing check proves — scaling the RTL's times from one
+nanosecond a cycle to the render's clock period. Writes OUT.vcd and a GTKWave view
+OUT.gtkw beside it (paths relative to the view): the normalize block's signals, then the
+RTL unit's pins and the registers that hold its pixels.
+
+Usage: scripts/merge-vcd.py PIPELINE.vcd RTL.vcd OUT.vcd [--clock-mhz 500]
+Exit 0, or 2 with a message naming the file when one is not a VCD it can read."""
+import argparse
+import itertools
+import os
+import re
+import string
+import sys
+
+
+def fail(path, why):
+    print(f"merge-vcd.py: {path}: {why}", file=sys.stderr)
+    sys.exit(2)
+
+
+def read(path):
+    """(header lines before $enddefinitions, [(time, [change lines])], timescale in ps)."""
+    try:
+        text = open(path, encoding="utf-8", errors="replace").read()
+    except OSError as e:
+        fail(path, e.strerror)
+    head, sep, body = text.partition("$enddefinitions $end")
+    if not sep:
+        fail(path, "no $enddefinitions: not a VCD")
+    scale = re.search(r"\$timescale\s*(\d+)\s*(ps|ns)\s*\$end", head)
+    if not scale:
+        fail(path, "its $timescale is not in ps or ns")
+    ps = int(scale.group(1)) * (1000 if scale.group(2) == "ns" else 1)
+    steps, time = [], 0
+    for line in body.split("\n"):
+        line = line.strip()
+        if not line or line.startswith("$"):  # $dumpvars … $end: the changes inside count at their time
+            continue
+        if line.startswith("#"):
+            time = int(line[1:])
+            steps.append((time, []))
+        else:
+            if not steps:
+                steps.append((0, []))
+            steps[-1][1].append(line)
+    return head, steps, ps
+
+
+def var_lines(head):
+    """(kind, words) of each $scope, $upscope and $var: by tokens, as an identifier may be "$"."""
+    tokens, out, k = head.split(), [], 0
+    while k < len(tokens):
+        if tokens[k] in ("$scope", "$upscope", "$var"):
+            end = tokens.index("$end", k + 1 + (3 if tokens[k] == "$var" else 0))
+            out.append((tokens[k][1:], " ".join(tokens[k + 1:end])))
+            k = end
+        k += 1
+    return out
+
+
+def identifiers():
+    chars = string.printable[:94].replace("$", "")
+    for n in itertools.count(1):
+        for t in itertools.product(chars, repeat=n):
+            yield "".join(t)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("pipeline")
+    ap.add_argument("rtl")
+    ap.add_argument("out")
+    ap.add_argument("--clock-mhz", type=float, default=500)
+    a = ap.parse_args()
+    if not a.out.endswith(".vcd"):
+        fail(a.out, "the output must end in .vcd")
+    p_head, p_steps, p_ps = read(a.pipeline)
+    r_head, r_steps, r_ps = read(a.rtl)
+    period_ps = 1e6 / a.clock_mhz
+    # New identifiers for every variable of both files (the two files' overlap).
+    fresh, rename = identifiers(), [{}, {}]
+    lines = ["$version shadetlm merge-vcd.py $end", "$timescale 1 ps $end"]
+    names = []  # (file, hierarchical name) for the view
+    for k, head in enumerate((p_head, r_head)):
+        if k == 1:
+            lines.append("$scope module rtl $end")
+        scope = ["rtl"] if k == 1 else []
+        for kind, rest in var_lines(head):
+            words = rest.split()
+            if kind == "scope":
+                scope.append(words[1])
+                lines.append(f"$scope module {words[1]} $end")
+            elif kind == "upscope":
+                scope.pop()
+                lines.append("$upscope $end")
+            else:
+                old = words[2]
+                if old not in rename[k]:
+                    rename[k][old] = next(fresh)
+                words[2] = rename[k][old]
+                lines.append("$var " + " ".join(words) + " $end")
+                names.append((k, words[0], ".".join(scope + [words[3]]) + (words[4] if len(words) > 4 else "")))
+        if k == 1:
+            lines.append("$upscope $end")
+    lines.append("$enddefinitions $end")
+
+    def changes(steps, k, unit_ps):
+        for time, ch in steps:
+            out = []
+            for c in ch:
+                if c[0] in "bBrR":
+                    value, ident = c.split()
+                    out.append(f"{value} {rename[k][ident]}")
+                else:
+                    out.append(c[0] + rename[k][c[1:]])
+            yield round(time * unit_ps), out
+
+    # The RTL's cycle n is at n ns: at n periods of the pipeline's clock.
+    merged = {}
+    for t, ch in changes(p_steps, 0, p_ps):
+        merged.setdefault(t, []).extend(ch)
+    for t, ch in changes(r_steps, 1, r_ps * period_ps / 1000):
+        merged.setdefault(t, []).extend(ch)
+    for t in sorted(merged):
+        lines.append(f"#{t}")
+        lines.extend(merged[t])
+    tmp = f"{a.out}.tmp.{os.getpid()}"
+    with open(tmp, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    os.replace(tmp, a.out)
+
+    # The view: the normalize block's signals, then the RTL's pins and held pixels.
+    # It opens on the first traced pixel (the pipeline's first change after the start).
+    first = next((t for t, ch in changes(p_steps, 0, p_ps) if t > 0 and ch), 0)
+    view = [f"[dumpfile] \"{os.path.basename(a.out)}\"", f"[timestart] {first}", "[sst_expanded] 1",
+            "@800200", "-normalize (TLM)"]
+    style = lambda kind, name: "@8420" if kind == "real" else "@28" if "[" not in name else "@24"
+    for k, kind, name in names:
+        if k == 0 and ".normalize." in name:
+            view += [style(kind, name), name]
+    view += ["@1000200", "-normalize (TLM)", "@800200", "-normalize (RTL)"]
+    pins = ("clk", "in_valid", "in_ready", "in_first", "out_valid", "out_ready", "out_tag", "count", "busy")
+    for k, kind, name in names:
+        base = re.sub(r"\[.*$", "", name.rsplit(".", 1)[-1])
+        if k == 1 and "normalize_unit." in name and base in pins:
+            view += [style(kind, name), name]
+    view += ["@1000200", "-normalize (RTL)"]
+    gtkw = a.out[:-4] + ".gtkw"
+    with open(gtkw + f".tmp.{os.getpid()}", "w") as f:
+        f.write("\n".join(view) + "\n")
+    os.replace(gtkw + f".tmp.{os.getpid()}", gtkw)
+    print(f"{a.out}: {len(names)} signals, {len(merged)} time steps; view {gtkw}")
+
+
+main()
