@@ -4,11 +4,12 @@
 `shadetlm timing-check --rtl-normalize M --rtl-vcd` made from the same render's timing
 log — the same cycles, as the timing check proves — scaling the RTL's times from one
 nanosecond a cycle to the render's clock period. Writes OUT.vcd and a GTKWave view
-OUT.gtkw beside it (paths relative to the view): the normalize block's signals, then the
-RTL unit's pins and the registers that hold its pixels.
+OUT.gtkw beside it (absolute paths, as the render's view): the normalize block's
+signals, then the RTL unit's pins and counters.
 
 Usage: scripts/merge-vcd.py PIPELINE.vcd RTL.vcd OUT.vcd [--clock-mhz 500]
-Exit 0, or 2 with a message naming the file when one is not a VCD it can read."""
+Exit 0; 2 with a message naming the file when one is not a VCD it can read or the
+clock is not a positive number; 1 when the output cannot be written (nothing is left)."""
 import argparse
 import itertools
 import os
@@ -35,19 +36,39 @@ def read(path):
     if not scale:
         fail(path, "its $timescale is not in ps or ns")
     ps = int(scale.group(1)) * (1000 if scale.group(2) == "ns" else 1)
-    steps, time = [], 0
-    for line in body.split("\n"):
+    steps, comment = [], False
+    for number, line in enumerate(body.split("\n"), 1):
         line = line.strip()
+        if comment or line.startswith("$comment"):  # skipped to its $end
+            comment = not line.endswith("$end")
+            continue
         if not line or line.startswith("$"):  # $dumpvars … $end: the changes inside count at their time
             continue
         if line.startswith("#"):
-            time = int(line[1:])
-            steps.append((time, []))
+            if not line[1:].isdigit():
+                fail(path, f"line {number} after the header: a time that is not a number: {line[:40]}")
+            steps.append((int(line[1:]), []))
         else:
+            if line[0] not in "01xzXZbBrR" or (line[0] in "bBrR" and len(line.split()) != 2) or len(line) < 2:
+                fail(path, f"line {number} after the header: not a value change: {line[:40]}")
             if not steps:
                 steps.append((0, []))
             steps[-1][1].append(line)
     return head, steps, ps
+
+
+def write(path, text):
+    """The whole file or none: a temporary beside it, renamed into place."""
+    tmp = f"{path}.tmp.{os.getpid()}"
+    try:
+        with open(tmp, "w") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except OSError as e:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        print(f"merge-vcd.py: {path}: {e.strerror}", file=sys.stderr)
+        sys.exit(1)
 
 
 def var_lines(head):
@@ -55,11 +76,24 @@ def var_lines(head):
     tokens, out, k = head.split(), [], 0
     while k < len(tokens):
         if tokens[k] in ("$scope", "$upscope", "$var"):
-            end = tokens.index("$end", k + 1 + (3 if tokens[k] == "$var" else 0))
+            end = tokens.index("$end", k + 1 + (3 if tokens[k] == "$var" else 0))  # ValueError: none
             out.append((tokens[k][1:], " ".join(tokens[k + 1:end])))
             k = end
         k += 1
     return out
+
+
+def declarations(path, head):
+    try:
+        found = var_lines(head)
+    except ValueError:
+        fail(path, "a $scope, $upscope or $var without its $end")
+    depth = 0
+    for kind, rest in found:
+        depth += {"scope": 1, "upscope": -1}.get(kind, 0)
+        if depth < 0 or (kind == "scope" and len(rest.split()) < 2) or (kind == "var" and len(rest.split()) < 4):
+            fail(path, f"a ${kind} it cannot read: {rest[:40]}")
+    return found
 
 
 def identifiers():
@@ -78,6 +112,8 @@ def main():
     a = ap.parse_args()
     if not a.out.endswith(".vcd"):
         fail(a.out, "the output must end in .vcd")
+    if not (a.clock_mhz > 0 and a.clock_mhz < 1e6):
+        fail("--clock-mhz", "must be a positive number of MHz")
     p_head, p_steps, p_ps = read(a.pipeline)
     r_head, r_steps, r_ps = read(a.rtl)
     period_ps = 1e6 / a.clock_mhz
@@ -85,11 +121,11 @@ def main():
     fresh, rename = identifiers(), [{}, {}]
     lines = ["$version shadetlm merge-vcd.py $end", "$timescale 1 ps $end"]
     names = []  # (file, hierarchical name) for the view
-    for k, head in enumerate((p_head, r_head)):
+    for k, (path, head) in enumerate(((a.pipeline, p_head), (a.rtl, r_head))):
         if k == 1:
             lines.append("$scope module rtl $end")
         scope = ["rtl"] if k == 1 else []
-        for kind, rest in var_lines(head):
+        for kind, rest in declarations(path, head):
             words = rest.split()
             if kind == "scope":
                 scope.append(words[1])
@@ -109,14 +145,14 @@ def main():
     lines.append("$enddefinitions $end")
 
     def changes(steps, k, unit_ps):
+        path = (a.pipeline, a.rtl)[k]
         for time, ch in steps:
             out = []
             for c in ch:
-                if c[0] in "bBrR":
-                    value, ident = c.split()
-                    out.append(f"{value} {rename[k][ident]}")
-                else:
-                    out.append(c[0] + rename[k][c[1:]])
+                value, ident = c.split() if c[0] in "bBrR" else (c[0], c[1:])
+                if ident not in rename[k]:
+                    fail(path, f"a change of an identifier it never declared: {c[:40]}")
+                out.append(f"{value} {rename[k][ident]}" if c[0] in "bBrR" else value + rename[k][ident])
             yield round(time * unit_ps), out
 
     # The RTL's cycle n is at n ns: at n periods of the pipeline's clock.
@@ -128,16 +164,14 @@ def main():
     for t in sorted(merged):
         lines.append(f"#{t}")
         lines.extend(merged[t])
-    tmp = f"{a.out}.tmp.{os.getpid()}"
-    with open(tmp, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    os.replace(tmp, a.out)
+    write(a.out, "\n".join(lines) + "\n")
 
     # The view: the normalize block's signals, then the RTL's pins and held pixels.
     # It opens on the first traced pixel (the pipeline's first change after the start).
     first = next((t for t, ch in changes(p_steps, 0, p_ps) if t > 0 and ch), 0)
-    view = [f"[dumpfile] \"{os.path.basename(a.out)}\"", f"[timestart] {first}", "[sst_expanded] 1",
-            "@800200", "-normalize (TLM)"]
+    gtkw = a.out[:-4] + ".gtkw"
+    view = [f"[dumpfile] \"{os.path.abspath(a.out)}\"", f"[savefile] \"{os.path.abspath(gtkw)}\"",
+            f"[timestart] {first}", "[sst_expanded] 1", "@800200", "-normalize (TLM)"]
     style = lambda kind, name: "@8420" if kind == "real" else "@28" if "[" not in name else "@24"
     for k, kind, name in names:
         if k == 0 and ".normalize." in name:
@@ -149,10 +183,7 @@ def main():
         if k == 1 and "normalize_unit." in name and base in pins:
             view += [style(kind, name), name]
     view += ["@1000200", "-normalize (RTL)"]
-    gtkw = a.out[:-4] + ".gtkw"
-    with open(gtkw + f".tmp.{os.getpid()}", "w") as f:
-        f.write("\n".join(view) + "\n")
-    os.replace(gtkw + f".tmp.{os.getpid()}", gtkw)
+    write(gtkw, "\n".join(view) + "\n")
     print(f"{a.out}: {len(names)} signals, {len(merged)} time steps; view {gtkw}")
 
 

@@ -9,9 +9,11 @@
 #     (timing-check --rtl-normalize), against the fast model's times for every pixel at
 #     every block: the golden scenes in every mode, and configurations where the unit's
 #     output stalls (FIFOs of one, a slow lighting block). And the check fails where it
-#     must: the RTL of one mode against another mode's log.
-#  3. Refusals: another format, another latency, the loop engine — exit 2, the setting
-#     named. The waveform of the unit's pins and registers.
+#     must: a forward-difference log with half its packet starts taken out.
+#  3. Refusals: another format, another latency, the loop engine, logs that do not fit
+#     the unit — exit 2, the setting named. The waveforms: the unit's, and merged.
+#  4. Test vectors through the RTL testbench, at the build's format and at a narrow one.
+#  5. Yosys synthesizes the RTL without latches (skipped, said, without Yosys).
 # Usage: rtl_test.sh SHADETLM SOURCE_DIR. Exit 77 (skipped) when the build has no RTL.
 set -u
 bin=$1
@@ -163,6 +165,17 @@ if ((lines > 500)) && "$src/scripts/rtl-vectors.sh" "$tmp/vec" >"$tmp/tb" 2>&1 &
   ok "test vectors through the RTL testbench: $(cat "$tmp/tb")"
 else
   fail "test vectors through the RTL testbench:"; sed 's/^/    /' "$tmp/tb" | tail -5
+fi
+# A narrow format, simulated (the build's RTL is fixed:3.20; the testbench is built for
+# the vectors' format): the float32 estimate's conversions and saturating constants
+# (1.5 and 1 past a format of no integer bits) at 7 bits.
+rm -rf "$tmp/vec-narrow"
+"$bin" render "$src/golden/torus/scene.json" -o "$tmp/f.exr" --set pipeline.normalize.format=fixed:0.6 \
+  --set pipeline.normalize.mode=rsqrt1 --vectors "$tmp/vec-narrow" --trace-region 30,20,90,60 >/dev/null 2>&1
+if "$src/scripts/rtl-vectors.sh" "$tmp/vec-narrow" >"$tmp/tb" 2>&1 && grep -q " 0 different" "$tmp/tb"; then
+  ok "fixed:0.6 vectors through the RTL testbench: $(cat "$tmp/tb")"
+else
+  fail "fixed:0.6 vectors through the RTL testbench:"; sed 's/^/    /' "$tmp/tb" | tail -5
 fi
 # One output word changed (its first digit), the rest as they were.
 awk '!/^\/\// && !done { $0 = (substr($0, 1, 1) == "0" ? "1" : "0") substr($0, 2); done = 1 } { print }' \
