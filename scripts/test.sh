@@ -18,7 +18,10 @@ if [[ ${1:-} == --sanitize ]]; then
   flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
   flags+=" -fno-sanitize-address-use-after-scope"
   # GCC 12 reports false maybe-uninitialized warnings in libstdc++ under sanitizers.
-  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  # The verilated RTL is left out (its test skips): five models under ASan cost CI about
+  # 4 minutes of its 30. The transactor and the lockstep passed this suite when issue 26
+  # was closed; -DSHADETLM_RTL=ON runs them again.
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHADETLM_RTL="${SHADETLM_RTL:-OFF}" \
     -DCMAKE_CXX_FLAGS="$flags -Wno-maybe-uninitialized" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
     >/dev/null
   cmake --build "$build" -j"$(nproc)"
