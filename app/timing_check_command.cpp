@@ -72,7 +72,7 @@ Command add_timing_check_command(CLI::App& app) {
               pins = rtl::make_normalize_unit_pins(mode, vcd ? vcd->path() : std::string());
 #else
               throw core::InputError("--rtl-normalize", *rtl_mode,
-                                     "this build has no RTL (Verilator was not found when it was configured)");
+                                     "this build has no RTL (built without Verilator, or with SHADETLM_RTL=OFF)");
 #endif
             }
             const timing_reference::Measured m = timing_reference::run_clocked(w, "normalize", pins.get());

@@ -143,14 +143,14 @@ NormalizeRtlKernel::NormalizeRtlKernel(NormalizeMode mode, core::NumberFormat fo
 #else  // no Verilator when this build was configured
 
 bool normalize_rtl_built() { return false; }
-std::string normalize_rtl_build() { return "none: Verilator was not found when this build was configured"; }
+std::string normalize_rtl_build() { return "none: built without Verilator, or with SHADETLM_RTL=OFF"; }
 
 NormalizeRtlKernel::NormalizeRtlKernel(NormalizeMode mode, core::NumberFormat format, Timing timing,
                                        const std::string& scene_file)
     : mode_(mode), format_(format), timing_(timing), scene_file_(scene_file), numbers_(format) {
   throw core::InputError(scene_file, kSetting,
-                         "rtl: this build has no RTL normalize unit (Verilator was not found when it was "
-                         "configured; scripts/setup.sh installs it)");
+                         "rtl: this build has no RTL normalize unit (built without Verilator, which "
+                         "scripts/setup.sh installs, or with SHADETLM_RTL=OFF)");
 }
 
 #endif

@@ -25,7 +25,7 @@
 
 namespace shadetlm::modules {
 
-// Whether this build has the RTL (Verilator was found when it was configured), and
+// Whether this build has the RTL (Verilator found, SHADETLM_RTL on), and
 // what it was built for ("fixed:3.20; exact latency 40 II 3, …"; or why it has none).
 bool normalize_rtl_built();
 std::string normalize_rtl_build();
