@@ -22,15 +22,9 @@ if [[ ! $about =~ ^format\ fixed:([0-9]+)\.([0-9]+),\ mode\ ([a-z0-9-]+)$ ]]; th
   exit 2
 fi
 ibits=${BASH_REMATCH[1]} fbits=${BASH_REMATCH[2]} mode=${BASH_REMATCH[3]}
-# mode: index latency II (the model's defaults, as rtl/CMakeLists.txt builds them)
-case $mode in
-  exact) params=(0 40 3) ;;
-  forward-difference) params=(1 32 3) ;;
-  rsqrt0) params=(2 21 1) ;;
-  rsqrt1) params=(3 37 1) ;;
-  rsqrt2) params=(4 53 1) ;;
-  *) echo "rtl-vectors.sh: $in: unknown mode $mode" >&2; exit 2 ;;
-esac
+# mode: index latency II, as the build has them
+read -r -a params < <(awk -v m="$mode" '$1 == m { print $2, $3, $4 }' "$root/rtl/normalize/modes.txt")
+((${#params[@]} == 3)) || { echo "rtl-vectors.sh: $in: unknown mode $mode" >&2; exit 2; }
 pixels=$(grep -vc '^//' "$in" || true)
 if ((pixels < 1 || pixels > 1048576)) || [[ $pixels != "$(grep -vc '^//' "$out" || true)" ]]; then
   echo "rtl-vectors.sh: $dir: 1 … 1048576 pixels, as many out as in (a --trace-region keeps them few)" >&2

@@ -40,8 +40,8 @@ done
 out=$root/out/synth
 mkdir -p "$out"
 rtl=$root/rtl/normalize
-# mode index latency II: the model's defaults (rtl/CMakeLists.txt builds the same).
-modes=("exact 0 40 3" "forward-difference 1 32 3" "rsqrt0 2 21 1" "rsqrt1 3 37 1" "rsqrt2 4 53 1")
+# mode index latency II, as the build has them
+mapfile -t modes < <(grep '^[a-z]' "$rtl/modes.txt" | tr -s ' ')
 
 # synth FORMAT MODE INDEX LATENCY II: Yosys's statistics of the datapath (reused while
 # the RTL is older than its log) and of the unit around it.
@@ -100,7 +100,7 @@ def render(mode, fmt):
 print("| mode | format | datapath cells | datapath transistors | unit flip-flops | latency / II |"
       " model ops a pixel | normal error, max (long-spans) |")
 print("|---|---|---:|---:|---:|---|---:|---:|")
-timing = {"exact": "40 / 3", "forward-difference": "32 / 3", "rsqrt0": "21 / 1", "rsqrt1": "37 / 1", "rsqrt2": "53 / 1"}
+timing = {w[0]: f"{w[2]} / {w[3]}" for w in (l.split() for l in open(f"{root}/rtl/normalize/modes.txt")) if w[0][0].isalpha()}
 for fmt in formats:
     for mode in modes:
         cells, transistors, _ = stat(f"{out}/{mode}.{fmt}.normalize_datapath.log")
