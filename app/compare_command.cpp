@@ -1,4 +1,4 @@
-// shadetlm compare A.exr B.exr [--layer RGB|Z|N] [--fail T] [--failpercent P]
+// shadetlm compare A.exr B.exr [--layer RGB|A|Z|N] [--fail T] [--failpercent P]
 //                  [--hardfail H] [--diff diff.exr] [--json]
 #include <cmath>
 #include <cstdlib>
@@ -9,6 +9,23 @@
 #include "shadetlm/core/input_error.hpp"
 
 namespace shadetlm::app {
+
+namespace {
+// Per layer: the figures over the covered pixels, then the frame-wide ones, then the verdict's count.
+void print_figures(const core::CompareResult& r, double fail) {
+  using core::figure;
+  const core::Coverage& c = r.coverage;
+  if (!r.layers.empty())
+    std::cout << "covered (" << (c.source == "none" ? "no A or Z: every pixel" : c.source) << "): " << c.a << " pixels in A, "
+              << c.b << " in B, " << c.either << " in either, " << c.differ << " in one only\n";
+  for (const auto& m : r.layers)
+    std::cout << m.layer << ": max " << figure(m.max_abs) << " at (" << m.max_x << ", " << m.max_y << "), rmse "
+              << figure(m.rmse) << ", psnr " << figure(m.psnr) << " dB over " << m.pixels
+              << " covered pixels; frame-wide: max " << figure(m.frame_max) << ", rmse " << figure(m.frame_rmse)
+              << ", psnr " << figure(m.frame_psnr) << " dB; " << figure(m.over_percent) << " % of the frame's pixels over "
+              << figure(fail) << (m.pass ? "" : "  FAIL") << "\n";
+}
+}  // namespace
 
 Command add_compare_command(CLI::App& app) {
   struct Options {
@@ -22,7 +39,7 @@ Command add_compare_command(CLI::App& app) {
   cmd->add_option("a", opt->a, "frame under test")->required();
   cmd->add_option("b", opt->b, "reference frame")->required();
   cmd->add_option("--layer", opt->compare.layers, "layers to compare (default: all present)")
-      ->check(CLI::IsMember({"RGB", "Z", "N"}));
+      ->check(CLI::IsMember({"RGB", "A", "Z", "N"}));
   // NaN would make every comparison pass (or fail): thresholds are finite numbers ≥ 0.
   const CLI::Validator threshold = finite_in(0, 1e300);
   cmd->add_option("--fail", opt->compare.fail, "a pixel fails over this absolute error")
@@ -54,10 +71,7 @@ Command add_compare_command(CLI::App& app) {
             if (opt->json) {
               std::cout << r.to_json().dump(2) << "\n";
             } else {
-              for (const auto& m : r.layers)
-                std::cout << m.layer << ": max " << m.max_abs << " at (" << m.max_x << ", " << m.max_y
-                          << "), rmse " << m.rmse << ", psnr " << m.psnr << " dB, " << m.over_percent
-                          << " % of pixels over " << opt->compare.fail << (m.pass ? "" : "  FAIL") << "\n";
+              print_figures(r, opt->compare.fail);
               std::cout << r.verdict() << "\n";
             }
             core::OutputSet outputs;  // the difference and the images together, or none

@@ -47,8 +47,8 @@ class ProgressBar {
   bool enabled_, drawn_ = false;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
 };
-// Error of the pipeline's frame against the golden model's, per layer, and the
-// pixels whose coverage differs.
+// Error of the pipeline's frame against the golden model's, per layer (over the pixels
+// covered in either frame, and frame-wide), the coverage, and the truth the model used.
 nlohmann::json error_against_reference(const core::Frame& frame, const core::Scene& scene, double* reference_s) {
   const auto start = std::chrono::steady_clock::now();
   const core::Frame ref = reference::to_frame(reference::render(scene));
@@ -58,16 +58,13 @@ nlohmann::json error_against_reference(const core::Frame& frame, const core::Sce
   const core::CompareResult r = core::compare_frames(frame, ref, o);
   nlohmann::json j;
   for (const auto& m : r.layers) {
-    const std::string key = m.layer == "RGB" ? "rgb" : m.layer == "Z" ? "z" : "n";
-    j[key] = {{"max", core::json_figure(m.max_abs)},
-              {"max_at", {m.max_x, m.max_y}},
-              {"rmse", core::json_figure(m.rmse)},
-              {"psnr", core::json_figure(m.psnr)}};
+    std::string key = m.layer;
+    std::transform(key.begin(), key.end(), key.begin(), [](char c) { return char(std::tolower(c)); });
+    j[key] = core::layer_json(m);
   }
-  size_t coverage = 0;
-  const auto &a = frame.at("A"), &b = ref.at("A");
-  for (size_t i = 0; i < a.size(); ++i) coverage += a[i] != b[i];
-  j["coverage_mismatches"] = coverage;
+  j["coverage"] = core::coverage_json(r.coverage);
+  j["coverage_mismatches"] = r.coverage.differ;
+  j["truth"] = reference::truth(scene);
   return j;
 }
 }  // namespace
@@ -244,13 +241,20 @@ void write_outputs(const RenderOptions& opt, const modules::RenderResult& r, con
 
 // The summary's lines on the error against the golden model (stats["error"]).
 void print_error(const nlohmann::json& e, double reference_s) {
+  const auto fig = [](const nlohmann::json& x) { return x.is_number() ? core::figure(x.get<double>()) : x.get<std::string>(); };
+  const nlohmann::json& c = e["coverage"];
+  std::cout << "  error against the golden model over the " << c["either"] << " pixels covered in either frame ("
+            << c["differ"] << " covered in one only); golden model " << core::figure(reference_s) << " s\n";
   for (const char* layer : {"rgb", "z", "n"})
-    if (e.contains(layer))
-      std::cout << "  error " << layer << ": max " << e[layer]["max"] << " at (" << e[layer]["max_at"][0] << ", "
-                << e[layer]["max_at"][1] << "), rmse " << e[layer]["rmse"] << ", psnr " << e[layer]["psnr"]
-                << " dB\n";
-  std::cout << "  coverage mismatches: " << e["coverage_mismatches"] << " (golden model: " << reference_s
-            << " s)\n";
+    if (e.contains(layer)) {
+      const nlohmann::json& m = e[layer];
+      std::cout << "  error " << layer << ": max " << fig(m["max"]) << " at (" << m["max_at"][0] << ", "
+                << m["max_at"][1] << "), rmse " << fig(m["rmse"]) << ", psnr " << fig(m["psnr"])
+                << " dB; frame-wide: rmse " << fig(m["frame"]["rmse"]) << ", psnr " << fig(m["frame"]["psnr"]) << " dB\n";
+    }
+  std::string truth;
+  for (const auto& [material, what] : e["truth"].items()) truth += (truth.empty() ? "" : ", ") + material + ": " + what.get<std::string>();
+  std::cout << "  golden model's truth: " << (truth.empty() ? "the shading model" : truth) << "\n";
 }
 
 // The run's summary on stdout: what was rendered, how long it took, the error and what was written.

@@ -11,8 +11,42 @@ namespace shadetlm::core {
 namespace {
 const std::vector<std::pair<std::string, std::vector<std::string>>>& layer_table() {
   static const std::vector<std::pair<std::string, std::vector<std::string>>> t = {
-      {"RGB", {"R", "G", "B", "A"}}, {"Z", {"Z"}}, {"N", {"N.X", "N.Y", "N.Z"}}};
+      {"RGB", {"R", "G", "B"}}, {"A", {"A"}}, {"Z", {"Z"}}, {"N", {"N.X", "N.Y", "N.Z"}}};
   return t;
+}
+
+// Which pixels of a frame are covered: A ≠ 0 (NaN counts as covered), or without A a
+// finite or −inf Z, or without either every pixel. Returns the rule's name.
+std::string covered_pixels(const Frame& f, std::vector<bool>& covered) {
+  covered.assign(f.pixel_count(), true);
+  if (const Channel* a = f.find("A")) {
+    for (size_t i = 0; i < covered.size(); ++i) covered[i] = !(a->values[i] == 0.0f);
+    return "A";
+  }
+  if (const Channel* z = f.find("Z")) {
+    for (size_t i = 0; i < covered.size(); ++i) covered[i] = z->values[i] != std::numeric_limits<float>::infinity();
+    return "Z";
+  }
+  return "none";
+}
+
+Coverage coverage_of(const Frame& a, const Frame& b, std::vector<bool>& either) {
+  std::vector<bool> ca, cb;
+  Coverage c;
+  const std::string sa = covered_pixels(a, ca), sb = covered_pixels(b, cb);
+  c.source = sa == sb ? sa : sa + "/" + sb;
+  either.resize(ca.size());
+  for (size_t i = 0; i < ca.size(); ++i) {
+    c.a += ca[i], c.b += cb[i];
+    either[i] = ca[i] || cb[i];
+    c.either += either[i];
+    c.differ += ca[i] != cb[i];
+  }
+  return c;
+}
+
+double psnr_of(double peak, double mse) {
+  return mse == 0 ? std::numeric_limits<double>::infinity() : 10 * std::log10(peak * peak / mse);
 }
 
 double difference(float a, float b) {
@@ -21,11 +55,56 @@ double difference(float a, float b) {
   return std::abs(double(a) - double(b));
 }
 
-std::string number(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
+
+}  // namespace
+
+namespace {
+LayerMetrics layer_metrics(const Frame& a, const Frame& b, const std::string& layer,
+                           const std::vector<std::string>& chans, const std::vector<bool>& covered,
+                           const CompareOptions& opt) {
+  LayerMetrics m;
+  m.layer = layer;
+  m.channels = chans;
+  if (layer == "Z") {
+    m.peak = 0;
+    for (float z : b.at("Z"))
+      if (std::isfinite(z)) m.peak = std::max(m.peak, double(std::abs(z)));
+    if (m.peak == 0) m.peak = 1;
+  }
+  std::vector<const std::vector<float>*> ca, cb;
+  for (const auto& n : chans) {
+    ca.push_back(&a.at(n));
+    cb.push_back(&b.at(n));
+  }
+  double sum_sq = 0, frame_sum_sq = 0;
+  for (size_t i = 0; i < a.pixel_count(); ++i) {
+    double e = 0, sq = 0;
+    for (size_t k = 0; k < chans.size(); ++k) {
+      const double d = difference((*ca[k])[i], (*cb[k])[i]);
+      sq += d * d;
+      e = std::max(e, d);
+    }
+    frame_sum_sq += sq;
+    m.frame_max = std::max(m.frame_max, e);
+    if (e > opt.fail) ++m.over;
+    if (!covered[i]) continue;
+    ++m.pixels;
+    sum_sq += sq;
+    if (e > m.max_abs) {
+      m.max_abs = e;
+      m.max_x = int(i % size_t(a.width));
+      m.max_y = int(i / size_t(a.width));
+    }
+  }
+  const double mse = m.pixels == 0 ? 0 : sum_sq / (double(m.pixels) * double(chans.size()));
+  const double frame_mse = a.pixel_count() == 0 ? 0 : frame_sum_sq / (double(a.pixel_count()) * double(chans.size()));
+  m.rmse = std::sqrt(mse);
+  m.psnr = psnr_of(m.peak, mse);
+  m.frame_rmse = std::sqrt(frame_mse);
+  m.frame_psnr = psnr_of(m.peak, frame_mse);
+  m.over_percent = a.pixel_count() == 0 ? 0 : 100.0 * double(m.over) / double(a.pixel_count());
+  m.pass = m.over_percent <= opt.fail_percent && m.frame_max <= opt.hard_fail;
+  return m;
 }
 }  // namespace
 
@@ -37,6 +116,8 @@ CompareResult compare_frames(const Frame& a, const Frame& b, const CompareOption
                 " against " + std::to_string(b.width) + "x" + std::to_string(b.height);
     return r;
   }
+  std::vector<bool> covered;
+  r.coverage = coverage_of(a, b, covered);
   for (const auto& [layer, names] : layer_table()) {
     const bool asked = std::find(opt.layers.begin(), opt.layers.end(), layer) != opt.layers.end();
     std::vector<std::string> chans;
@@ -44,55 +125,17 @@ CompareResult compare_frames(const Frame& a, const Frame& b, const CompareOption
       const bool in_a = a.find(n) != nullptr, in_b = b.find(n) != nullptr;
       if (in_a && in_b) {
         chans.push_back(n);
-      } else if ((in_a || in_b) && !(layer == "RGB" && n == "A")) {
-        if (opt.layers.empty() || asked) {
-          r.pass = false;
-          r.problem += (r.problem.empty() ? "" : "; ") + std::string("channel ") + n +
-                       " is only in " + (in_a ? "A" : "B");
-        }
+      } else if ((in_a || in_b) && (opt.layers.empty() || asked)) {
+        r.pass = false;
+        r.problem += (r.problem.empty() ? "" : "; ") + std::string("channel ") + n + " is only in " + (in_a ? "A" : "B");
       }
     }
-    if (layer == "RGB" && chans.size() == 1) chans.clear();  // A alone is no colour layer
     if (asked && chans.empty()) {
       r.pass = false;
       r.problem += (r.problem.empty() ? "" : "; ") + ("no " + layer + " layer in both frames");
     }
     if (chans.empty() || (!opt.layers.empty() && !asked)) continue;
-
-    LayerMetrics m;
-    m.layer = layer;
-    m.channels = chans;
-    if (layer == "Z") {
-      m.peak = 0;
-      for (float z : b.at("Z"))
-        if (std::isfinite(z)) m.peak = std::max(m.peak, double(std::abs(z)));
-      if (m.peak == 0) m.peak = 1;
-    }
-    std::vector<const std::vector<float>*> ca, cb;
-    for (const auto& n : chans) {
-      ca.push_back(&a.at(n));
-      cb.push_back(&b.at(n));
-    }
-    double sum_sq = 0;
-    for (size_t i = 0; i < a.pixel_count(); ++i) {
-      double e = 0;
-      for (size_t k = 0; k < chans.size(); ++k) {
-        double d = difference((*ca[k])[i], (*cb[k])[i]);
-        sum_sq += d * d;
-        e = std::max(e, d);
-      }
-      if (e > m.max_abs) {
-        m.max_abs = e;
-        m.max_x = int(i % a.width);
-        m.max_y = int(i / a.width);
-      }
-      if (e > opt.fail) ++m.over;
-    }
-    const double mse = sum_sq / (double(a.pixel_count()) * chans.size());
-    m.rmse = std::sqrt(mse);
-    m.psnr = mse == 0 ? std::numeric_limits<double>::infinity() : 10 * std::log10(m.peak * m.peak / mse);
-    m.over_percent = 100.0 * double(m.over) / double(a.pixel_count());
-    m.pass = m.over_percent <= opt.fail_percent && m.max_abs <= opt.hard_fail;
+    LayerMetrics m = layer_metrics(a, b, layer, chans, covered, opt);
     r.pass = r.pass && m.pass;
     r.layers.push_back(m);
   }
@@ -144,19 +187,43 @@ void add_comparison_images(OutputSet& outputs, const std::string& prefix, const 
 }
 
 nlohmann::json json_figure(double x) {
-  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(number(x));
+  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(figure(x));
+}
+
+std::string figure(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  std::ostringstream s;
+  s.precision(4);
+  s << x;
+  return s.str();
+}
+
+nlohmann::json layer_json(const LayerMetrics& m) {
+  const auto num = json_figure;
+  return {{"channels", m.channels},
+          {"pixels", m.pixels},
+          {"max", num(m.max_abs)},
+          {"max_at", {m.max_x, m.max_y}},
+          {"rmse", num(m.rmse)},
+          {"psnr", num(m.psnr)},
+          {"peak", m.peak},
+          {"frame", {{"max", num(m.frame_max)}, {"rmse", num(m.frame_rmse)}, {"psnr", num(m.frame_psnr)}}}};
+}
+
+nlohmann::json coverage_json(const Coverage& c) {
+  return {{"source", c.source}, {"a", c.a}, {"b", c.b}, {"either", c.either}, {"differ", c.differ}};
 }
 
 nlohmann::json CompareResult::to_json() const {
-  const auto num = json_figure;
-  nlohmann::json j = {{"pass", pass}, {"layers", nlohmann::json::object()}};
+  nlohmann::json j = {{"pass", pass}, {"layers", nlohmann::json::object()}, {"coverage", coverage_json(coverage)}};
   if (!problem.empty()) j["problem"] = problem;
-  for (const auto& m : layers)
-    j["layers"][m.layer] = {{"channels", m.channels},   {"max", num(m.max_abs)},
-                            {"max_at", {m.max_x, m.max_y}}, {"rmse", num(m.rmse)},
-                            {"psnr", num(m.psnr)},        {"peak", m.peak},
-                            {"over", m.over},             {"over_percent", m.over_percent},
-                            {"pass", m.pass}};
+  for (const auto& m : layers) {
+    j["layers"][m.layer] = layer_json(m);
+    j["layers"][m.layer]["over"] = m.over;
+    j["layers"][m.layer]["over_percent"] = m.over_percent;
+    j["layers"][m.layer]["pass"] = m.pass;
+  }
   return j;
 }
 
@@ -164,8 +231,8 @@ std::string CompareResult::verdict() const {
   std::string s = pass ? "PASS" : "FAIL";
   if (!problem.empty()) s += ": " + problem;
   for (const auto& m : layers)
-    s += "  " + m.layer + (m.pass ? "" : "(fail)") + " max " + number(m.max_abs) + " psnr " +
-         number(m.psnr);
+    s += "  " + m.layer + (m.pass ? "" : "(fail)") + " max " + figure(m.max_abs) + " psnr " + figure(m.psnr) +
+         " (frame max " + figure(m.frame_max) + ")";
   return s;
 }
 

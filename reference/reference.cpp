@@ -373,6 +373,16 @@ Image render(const core::Scene& scene) {
   return img;
 }
 
+std::map<std::string, std::string> truth(const core::Scene& scene) {
+  std::map<std::string, std::string> t;
+  for (const core::Object& o : scene.objects) {
+    const core::Material& m = scene.materials[size_t(o.material)];
+    if (core::bump_path(m.path)) t[m.name] = m.height_map < 0 ? "normal map" : "height field";
+    if (m.path == core::ShadingPath::Parallax) t[m.name] = "height field";
+  }
+  return t;
+}
+
 core::Frame to_frame(const Image& img) {
   core::Frame f(img.width, img.height);
   const char* names[] = {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z"};

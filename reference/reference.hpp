@@ -15,6 +15,8 @@
 //  * bump-mapped materials: Blinn's perturbed normal of the exact height field, with
 //    the true per-pixel tangent frame (docs/bump-mapping.md);
 //  * Blinn-Phong with every light (docs/golden-model.md).
+#include <map>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -42,6 +44,12 @@ glm::dvec3 shade(const core::Scene& scene, const core::Material& material, const
                  const glm::dvec3& N, const glm::dvec3& tex);
 
 Image render(const core::Scene& scene);
+
+// What the golden model took as the truth where a scene gives it a choice, per material
+// that objects use: for bump materials "height field" (Blinn's normal of the height
+// map) or "normal map" (only a precomputed normal map given: read as the truth); for
+// parallax "height field". Other materials are absent: their truth is the shading model.
+std::map<std::string, std::string> truth(const core::Scene& scene);
 
 // The image as an EXR frame (float channels R, G, B, A, Z, N.X, N.Y, N.Z).
 core::Frame to_frame(const Image& image);

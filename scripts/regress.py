@@ -18,7 +18,7 @@ import sys
 BIN, ROOT, OUT = sys.argv[1], sys.argv[2], sys.argv[3]
 ONLY = [sys.argv[i + 1] for i, a in enumerate(sys.argv[:-1]) if a == "--scene"]
 REGEN = os.environ.get("REGEN_GOLDEN") == "1" and "CI" not in os.environ
-LAYERS = [("RGB", "rgb"), ("Z", "z"), ("N", "n")]
+LAYERS = [("RGB", "rgb"), ("A", "rgb"), ("Z", "z"), ("N", "n")]  # A (coverage) at the colour threshold
 
 
 def run(cmd):
@@ -71,7 +71,8 @@ for scene in scenes:
             stats = json.load(f)
         # Accuracy against the golden model.
         err = stats["error"]["rgb"]
-        row["accuracy"] = {"max": figure(err["max"]), "psnr": figure(err["psnr"]), "gate": accuracy}
+        row["accuracy"] = {"max": figure(err["max"]), "psnr": figure(err["psnr"]), "pixels": err["pixels"],
+                           "truth": stats["error"]["truth"], "gate": accuracy}
         # Written so that NaN fails.
         if "rgb_min_psnr" in accuracy and not figure(err["psnr"]) >= accuracy["rgb_min_psnr"]:
             row["accuracy_problems"].append("accuracy: PSNR %.1f dB below %.1f" % (figure(err["psnr"]), accuracy["rgb_min_psnr"]))
@@ -99,8 +100,8 @@ for scene in scenes:
                 row["layers"][layer] = m
                 if not m["pass"]:
                     frame_ok = False
-                    row["problems"].append("%s: max %.3g at (%d, %d) over %g" % (
-                        layer, figure(m["max"]), m["max_at"][0], m["max_at"][1], spec["regression"][key]))
+                    row["problems"].append("%s: %.3g %% of the frame's pixels over %g (largest: %.3g)" % (
+                        layer, m["over_percent"], spec["regression"][key], figure(m["frame"]["max"])))
         # Cycles against the accepted stats.
         now = cycles_of(stats)
         row["cycles"] = {"now": now["frame_cycles"], "then": None}
@@ -164,7 +165,7 @@ for r in rows:
     status = '<b class="fail">FAIL</b>' if failing(r) else \
         ('<b>rewritten</b>' if r.get("regenerated") else '<b class="ok">ok</b>')
     figs = []
-    for layer in ["RGB", "Z", "N"]:
+    for layer, _ in LAYERS:
         m = r["layers"].get(layer)
         if m:
             figs.append("%s: max %.3g at (%d, %d), PSNR %s dB, %.3g %% over threshold" % (
@@ -172,8 +173,10 @@ for r in rows:
                 "∞" if math.isinf(figure(m["psnr"])) else "%.1f" % figure(m["psnr"]), m["over_percent"]))
     if "accuracy" in r:
         a = r["accuracy"]
-        figs.append("golden model: max %.3g, PSNR %.1f dB (gate: %s)" % (
-            a["max"], a["psnr"], html.escape(", ".join("%s %s" % (k, v) for k, v in a["gate"].items() if k != "why"))))
+        truth = ", ".join("%s: %s" % kv for kv in sorted(a["truth"].items())) or "the shading model"
+        figs.append("golden model (truth: %s): max %.3g, PSNR %.1f dB over %d covered pixels, RGB (gate: %s)" % (
+            html.escape(truth), a["max"], a["psnr"], a["pixels"],
+            html.escape(", ".join("%s %s" % (k, v) for k, v in a["gate"].items() if k != "why"))))
     if "cycles" in r:
         figs.append("cycles: %s then, %s now" % (r["cycles"]["then"], r["cycles"]["now"]))
     figs += ['<span class="fail">%s</span>' % html.escape(p) for p in r["accuracy_problems"] + r["problems"]]

@@ -1,5 +1,7 @@
 // Frame comparison: metrics, the pass/fail rule, structural mismatches.
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include "shadetlm/core/compare.hpp"
 #include "test_util.hpp"
@@ -24,7 +26,7 @@ TEST_CASE("identical frames pass with zero error and infinite PSNR", "[compare]"
   const core::Frame a = frame(8, 4, 0.5f);
   const auto r = core::compare_frames(a, a, {});
   CHECK(r.pass);
-  REQUIRE(r.layers.size() == 3);
+  REQUIRE(r.layers.size() == 4);  // RGB, A, Z, N
   for (const auto& m : r.layers) {
     CHECK(m.max_abs == 0);
     CHECK(std::isinf(m.psnr));
@@ -42,9 +44,10 @@ TEST_CASE("one changed pixel is found, measured and located", "[compare]") {
   CHECK(rgb.max_x == 5);
   CHECK(rgb.max_y == 2);
   CHECK(rgb.over == 1);
-  // RMSE over the 32 pixels × 4 channels of the layer.
-  CHECK(rgb.rmse == Approx(std::sqrt(0.0625 / 128)));
-  CHECK(rgb.psnr == Approx(10 * std::log10(128 / 0.0625)));
+  // RMSE over the 32 pixels (all covered: A = 0.5) × 3 channels of the layer.
+  CHECK(rgb.pixels == 32);
+  CHECK(rgb.rmse == Approx(std::sqrt(0.0625 / 96)));
+  CHECK(rgb.psnr == Approx(10 * std::log10(96 / 0.0625)));
   CHECK(layer(r, "Z").pass);
   CHECK(layer(r, "N").pass);
 }
@@ -110,4 +113,72 @@ TEST_CASE("the difference frame holds |A - B| per channel", "[compare]") {
   const core::Frame d = core::difference_frame(a, b, r);
   CHECK(d.at("B") == std::vector<float>{0, 0.75f, 0});
   CHECK(d.at("R") == std::vector<float>{0, 0, 0});
+}
+
+// The figures over the covered pixels, computed here without compare.cpp's code: two
+// frames with their own coverage (some pixels covered in one only), random colours.
+TEST_CASE("the figures are over the pixels covered in either frame, R, G, B only", "[compare]") {
+  const int w = 23, h = 17;
+  core::Frame a(w, h), b(w, h);
+  uint32_t state = 12345;
+  auto next = [&]() { return (state = state * 1664525u + 1013904223u) >> 8; };
+  for (core::Frame* f : {&a, &b})
+    for (const char* n : {"R", "G", "B", "A"}) {
+      auto& v = f->add(n);
+      for (auto& x : v) x = std::string(n) == "A" ? float(next() % 3 != 0) : float(next() % 1000) / 1000.0f;
+    }
+  // Reference: a plain loop over the pixels covered in either frame.
+  double sum = 0, largest = 0, frame_sum = 0;
+  size_t covered = 0, differ = 0;
+  for (size_t i = 0; i < a.pixel_count(); ++i) {
+    double sq = 0, e = 0;
+    for (const char* n : {"R", "G", "B"}) {
+      const double d = double(a.at(n)[i]) - double(b.at(n)[i]);
+      sq += d * d;
+      e = std::max(e, std::abs(d));
+    }
+    frame_sum += sq;
+    const bool ca = a.at("A")[i] != 0, cb = b.at("A")[i] != 0;
+    differ += ca != cb;
+    if (!ca && !cb) continue;
+    ++covered, sum += sq, largest = std::max(largest, e);
+  }
+  const auto r = core::compare_frames(a, b, {});
+  const auto& rgb = layer(r, "RGB");
+  CHECK(r.coverage.source == "A");
+  CHECK(r.coverage.either == covered);
+  CHECK(r.coverage.differ == differ);
+  CHECK(rgb.channels == std::vector<std::string>{"R", "G", "B"});
+  CHECK(rgb.pixels == covered);
+  CHECK(rgb.max_abs == Approx(largest));
+  CHECK(rgb.rmse == Approx(std::sqrt(sum / (3.0 * double(covered)))));
+  CHECK(rgb.psnr == Approx(10 * std::log10(3.0 * double(covered) / sum)));
+  CHECK(rgb.frame_rmse == Approx(std::sqrt(frame_sum / (3.0 * w * h))));
+  CHECK(covered < a.pixel_count());  // the mask took pixels out
+  CHECK(rgb.rmse != Approx(rgb.frame_rmse));
+}
+
+TEST_CASE("without A a finite depth is coverage; without either every pixel counts", "[compare]") {
+  core::Frame a(4, 1), b(4, 1);
+  const float inf = std::numeric_limits<float>::infinity();
+  for (core::Frame* f : {&a, &b}) {
+    for (const char* n : {"R", "G", "B"}) f->add(n, 0.0f);
+    f->add("Z", inf);
+  }
+  a.at("Z")[1] = 2;  // pixel 1 covered in A only
+  a.at("R")[1] = 0.5f;
+  a.at("R")[3] = 0.5f;  // a background difference: outside the figures, inside the verdict
+  auto r = core::compare_frames(a, b, {});
+  CHECK(r.coverage.source == "Z");
+  CHECK(layer(r, "RGB").pixels == 1);
+  CHECK(layer(r, "RGB").rmse == Approx(std::sqrt(0.25 / 3)));
+  CHECK(layer(r, "RGB").over == 2);
+  CHECK(!r.pass);
+  core::CompareOptions rgb;
+  rgb.layers = {"RGB"};
+  a.channels.pop_back(), b.channels.pop_back();  // no Z: every pixel counts
+  r = core::compare_frames(a, b, rgb);
+  CHECK(r.coverage.source == "none");
+  CHECK(layer(r, "RGB").pixels == 4);
+  CHECK(layer(r, "RGB").rmse == Approx(std::sqrt(0.5 / 12)));
 }

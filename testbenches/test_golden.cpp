@@ -66,7 +66,7 @@ void check_regression(const core::Frame& frame, const core::Scene& scene, const 
   if (std::filesystem::exists(accepted)) {
     const core::Frame golden = core::read_exr(accepted);
     core::CompareOptions colour, depth, normal;
-    colour.layers = {"RGB"}, colour.fail = thresholds["rgb"].get<double>();
+    colour.layers = {"RGB", "A"}, colour.fail = thresholds["rgb"].get<double>();  // colour and coverage
     depth.layers = {"Z"}, depth.fail = thresholds["z"].get<double>();
     normal.layers = {"N"}, normal.fail = thresholds["n"].get<double>();
     const auto rc = core::compare_frames(frame, golden, colour), rz = core::compare_frames(frame, golden, depth),
