@@ -4,12 +4,16 @@
 // bump-mapping paper's texture of perturbed normals, with its full mip chain, as one
 // tiled mip-mapped EXR that a scene names as a material's normal_map. The parallax maps
 // (distancemap, refinedmap, conemap) are in app/parallax_command.cpp.
+#include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 
 #include "app/commands.hpp"
 #include "shadetlm/core/bump_map.hpp"
+#include "shadetlm/core/frame.hpp"
 #include "shadetlm/core/input_error.hpp"
 #include "shadetlm/core/mesh_io.hpp"
 #include "shadetlm/core/version.hpp"
@@ -30,6 +34,22 @@ core::Mesh surface_mesh(const std::string& surface) {
 
 }  // namespace
 
+namespace {
+bool ends_with_png(std::string path) {
+  std::transform(path.begin(), path.end(), path.begin(), [](char c) { return char(std::tolower(c)); });
+  return path.size() >= 4 && path.compare(path.size() - 4, 4, ".png") == 0;
+}
+
+// The finest level as an 8-bit PNG, as normal maps are stored: round((N + 1) / 2 · 255).
+std::string normal_map_png(const core::Texture& map) {
+  std::vector<unsigned char> rgb(size_t(map.width) * size_t(map.height) * 3);
+  for (size_t i = 0; i < map.texels.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      rgb[i * 3 + size_t(k)] = static_cast<unsigned char>(std::lround(std::clamp((map.texels[i][k] + 1.0f) * 0.5f, 0.0f, 1.0f) * 255.0f));
+  return core::encode_png(map.width, map.height, rgb);
+}
+}  // namespace
+
 Command add_precompute_command(CLI::App& app) {
   struct Options {
     std::string height, output = "out/normalmap.exr", surface, form, wrap = "repeat";
@@ -41,7 +61,9 @@ Command add_precompute_command(CLI::App& app) {
   cmd->require_subcommand(1);
   CLI::App* nm = cmd->add_subcommand("normalmap", "texture of perturbed normals from a height map (bump mapping)");
   nm->add_option("height", opt->height, "height map image (first channel; PNG or EXR, power-of-two sides)")->required();
-  nm->add_option("-o,--output", opt->output, "EXR to write (tiled, mip-mapped, float)")->capture_default_str()
+  nm->add_option("-o,--output", opt->output,
+                 "EXR to write (tiled, mip-mapped, float), or .png: the finest level at 8 bits, (N + 1) / 2")
+      ->capture_default_str()
       ->check(kNotEmpty);
   nm->add_option("--scale", opt->scale, "height scale: F = scale · h")->capture_default_str()->check(finite_in(0.0, 1e6));
   nm->add_option("--k", opt->k, "square patch: |Pu| = |Pv| = k (square form)")->capture_default_str()->check(
@@ -78,7 +100,12 @@ Command add_precompute_command(CLI::App& app) {
             }
             const std::vector<core::Texture> levels = core::mip_levels(base, !opt->keep_mip_lengths);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            core::write_mip_chain(opt->output, base, levels,
+            if (ends_with_png(opt->output)) {
+              core::OutputSet out;
+              out.write(opt->output, normal_map_png(base));
+              out.commit();
+            } else {
+              core::write_mip_chain(opt->output, base, levels,
                                   {{"shadetlm:version", core::kVersion},
                                    {"shadetlm:normalmap.form", form},
                                    {"shadetlm:normalmap.height", opt->height},
@@ -87,6 +114,7 @@ Command add_precompute_command(CLI::App& app) {
                                    {"shadetlm:normalmap.surface", opt->surface},
                                    {"shadetlm:normalmap.wrap", opt->wrap},
                                    {"shadetlm:normalmap.renormalized", opt->keep_mip_lengths ? "no" : "yes"}});
+            }
             std::cout << "precompute normalmap: " << opt->height << " (" << height.width << "x" << height.height
                       << "), " << form << " form, " << levels.size() + 1 << " levels, " << seconds << " s\n"
                       << "  wrote " << opt->output << "\n";

@@ -261,8 +261,6 @@ void check_material_path(JsonReader& r, const Material& m, const std::vector<Tex
   if (r.has("square_k") && m.path != ShadingPath::BumpSquare) r.fail("square_k", "only the bump-square path uses it");
   if (r.has("square_k") && m.normal_map >= 0)
     r.fail("square_k", "a precomputed normal_map has its k built in (shadetlm precompute normalmap --k)");
-  if (m.normal_map >= 0 && textures[size_t(m.normal_map)].srgb)
-    r.fail("normal_map", "expects an EXR of unit normals (shadetlm precompute normalmap), not an 8- or 16-bit image");
   auto usable = [&](int index, const char* key) {
     if ((!bump && m.path != ShadingPath::Parallax) || index < 0) return;
     try {
@@ -339,6 +337,17 @@ struct TextureRefs {
   const std::map<std::string, int>& texture_index;  // the textures object's, by name
   std::vector<Texture>& textures;                    // the scene's, grown by decoded copies
   std::map<int, int> decoded;  // sRGB texture → its linear copy, made once
+  std::map<int, int> normals;  // 8- or 16-bit normal map → its decoded copy (2x − 1), made once
+
+  // The normal map that `key` names (-1 if absent): an EXR as stored (N), an 8- or
+  // 16-bit image decoded from (N + 1) / 2, whatever its colorspace says.
+  int read_normal_map(JsonReader& r, const std::string& key) {
+    const int i = read(r, key, false);
+    if (i < 0 || !textures[size_t(i)].unorm) return i;
+    auto [d, fresh] = normals.emplace(i, static_cast<int>(textures.size()));
+    if (fresh) textures.push_back(decode_unorm_normals(textures[size_t(i)]));
+    return d->second;
+  }
 
   // The texture that `key` names (-1 if absent); a colour texture stored sRGB gives its
   // linear copy.
@@ -393,7 +402,7 @@ Material read_material(JsonReader r, const std::string& name, TextureRefs& textu
   m.height_scale = r.number("height_scale", 0.0, 0, 1e6);
   if (r.has("height_scale") && m.height_map < 0)
     r.fail("height_scale", "given without a height_map");
-  m.normal_map = texture_refs.read(r, "normal_map", false);
+  m.normal_map = texture_refs.read_normal_map(r, "normal_map");
   m.square_k = r.number("square_k", 1.0, kMinLength, kMaxLength);
   m.path = parse_shading_path(r.choice("path", std::string("phong"),
                                        {"phong", "bump-classic", "bump-tangent", "bump-square", "bump-object",

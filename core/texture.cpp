@@ -129,6 +129,15 @@ double linear_to_srgb(double c) {
   return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1 / 2.4) - 0.055;
 }
 
+Texture decode_unorm_normals(const Texture& t) {
+  Texture d = t;
+  d.srgb = false, d.unorm = false;
+  for (auto& c : d.texels) c = glm::vec4(2.0f * glm::vec3(c) - 1.0f, c.a);
+  for (auto& level : d.mips)
+    for (auto& c : level.texels) c = glm::vec4(2.0f * glm::vec3(c) - 1.0f, c.a);
+  return d;
+}
+
 Texture decode_srgb(const Texture& t) {
   Texture out = t;
   for (auto& c : out.texels)

@@ -18,6 +18,7 @@ struct Texture {
   std::vector<glm::vec4> texels;  // row-major, row 0 at the top
   Wrap wrap = Wrap::Repeat;
   bool srgb = false;  // the stored values are sRGB-encoded colours
+  bool unorm = false;  // read from an 8- or 16-bit image: values in [0, 1] (a normal map's are (N + 1) / 2)
   std::vector<Texture> mips;  // levels 1 … of a mip-mapped EXR as read (else empty)
 
   glm::dvec4 texel(int x, int y) const;      // with the wrap mode applied
@@ -28,6 +29,9 @@ double srgb_to_linear(double c);
 double linear_to_srgb(double c);
 // The texture with its colour channels decoded to linear (alpha untouched).
 Texture decode_srgb(const Texture& t);
+// A normal map read from an 8- or 16-bit image: x ↦ 2x − 1 on R, G, B, the stored
+// (N + 1) / 2 back to N (docs/scene-format.md).
+Texture decode_unorm_normals(const Texture& t);
 
 // Procedural textures for tests and demos. All are periodic over [0,1]², so they tile
 // seamlessly under Wrap::Repeat. Noise values lie in [0, 1].

@@ -92,7 +92,7 @@ Texture load_texture_file(const std::string& path) {
     }
   } else if (ends_with(".png")) {
     t = read_png(path, kMaxTexels);
-    t.srgb = true;  // 8- and 16-bit images hold display-encoded colours
+    t.srgb = t.unorm = true;  // 8- and 16-bit images hold display-encoded colours
   } else if (ends_with(".jpg") || ends_with(".jpeg")) {
     int channels = 0;
     if (!stbi_info(path.c_str(), &t.width, &t.height, &channels))
@@ -108,7 +108,7 @@ Texture load_texture_file(const std::string& path) {
     t.texels.resize(size_t(t.width) * t.height);
     for (size_t i = 0; i < t.texels.size(); ++i)
       for (int k = 0; k < 4; ++k) t.texels[i][k] = data.get()[i * 4 + k] / 65535.0f;
-    t.srgb = true;  // 8- and 16-bit images hold display-encoded colours
+    t.srgb = t.unorm = true;  // 8- and 16-bit images hold display-encoded colours
   } else {
     throw InputError(path, "", "unknown image type (use .png, .jpg or .exr)");
   }

@@ -2,7 +2,9 @@
 """Number formats per block on the stress scenes (docs/numerical-stability.md).
 
 For each block with a format of its own (pipeline.<block>.format), the others staying
-float32, on every stress scene where the block does work:
+float32, on every stress scene where the block does work — normalize three times: the
+radicand direct (exact mode), and by forward differences seeded per packet and per
+raster line:
   * float16: the largest colour difference from the float32 frame, and the non-finite
     values, overflows and invalid operations the block met;
   * fixed point, per scene: I, the fewest integer bits with no saturation (at
@@ -25,7 +27,15 @@ import tempfile
 
 BIN, ROOT = sys.argv[1], sys.argv[2]
 TMP = tempfile.mkdtemp(prefix="formats-")
-BLOCKS = ["normal_interp", "normalize", "vector_interp", "lighting", "texel_project", "parallax"]
+# (label, block, the settings it runs under, in its float32 baseline too)
+FD = "pipeline.normalize.mode=forward-difference"
+VARIANTS = [("normal_interp", "normal_interp", []), ("normalize", "normalize", []),
+            ("normalize, forward-difference per packet", "normalize", [FD]),
+            ("normalize, forward-difference per line", "normalize", [FD, "pipeline.normalize.seed=line"]),
+            ("vector_interp", "vector_interp", []), ("lighting", "lighting", []),
+            ("texel_project", "texel_project", []), ("parallax", "parallax", [])]
+BLOCK = {label: block for label, block, _ in VARIANTS}
+SETS = {label: sets for label, _, sets in VARIANTS}
 BOUNDS = [("1/255", 1 / 255), ("2^-12", 2 ** -12)]
 SCENES = sorted(glob.glob(os.path.join(ROOT, "scenes/stress/*.json")))
 JOBS = max(1, os.cpu_count() or 1)
@@ -38,7 +48,7 @@ def render(scene, sets, tag):
     renders += 1
     out = os.path.join(TMP, tag + ".exr")
     stats = os.path.join(TMP, tag + ".json")
-    args = [BIN, "render", scene, "-o", out, "--stats", stats]
+    args = [BIN, "render", scene, "-o", out, "--stats", stats, "--allow-nonfinite"]  # counted in the stats
     for s in sets:
         args += ["--set", s]
     subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
@@ -55,25 +65,28 @@ def name(scene):
     return os.path.splitext(os.path.basename(scene))[0]
 
 
-# The float32 frames, and where each block works.
-base, works = {}, {b: [] for b in BLOCKS}
+# The float32 frames (one per set of settings), and where each block works.
+base, works = {}, {label: [] for label, _, _ in VARIANTS}
 for scene in SCENES:
-    frame, stats = render(scene, [], name(scene) + "-float32")
-    base[scene] = frame
-    for b in BLOCKS:
+    for label, b, sets in VARIANTS:
+        key = (scene, tuple(sets))
+        if key not in base:
+            base[key] = render(scene, sets, "%s-float32-%d" % (name(scene), len(base)))
+        frame, stats = base[key]
         s = stats["blocks"].get(b)
         if not s:
             continue
         worked = s["details"].get("texels", 0) > 0 if b == "texel_project" else s["pixels"] > 0
         if worked:
-            works[b].append(scene)
+            works[label].append(scene)
 
 
-def run(block, fmt, scene):
-    tag = "%s-%s-%s" % (name(scene), block, fmt.replace(":", "_"))
-    frame, stats = render(scene, ["pipeline.%s.format=%s" % (block, fmt)], tag)
+def run(label, fmt, scene):
+    block = BLOCK[label]
+    tag = "%s-%s-%s" % (name(scene), label.replace(" ", "_").replace(",", ""), fmt.replace(":", "_"))
+    frame, stats = render(scene, SETS[label] + ["pipeline.%s.format=%s" % (block, fmt)], tag)
     numbers = stats["blocks"][block]["numbers"]
-    d = difference(frame, base[scene])
+    d = difference(frame, base[(scene, tuple(SETS[label]))][0])
     os.remove(frame)
     return d, numbers
 
@@ -134,7 +147,7 @@ def requirement(block, scene):
 
 
 rows, matrix = [], {}
-for block in BLOCKS:
+for block, _, _ in VARIANTS:
     if not works[block]:
         continue
     half = over_scenes(block, "float16")

@@ -1,9 +1,12 @@
 // Bump mapping (docs/bump-mapping.md): the precomputation against closed forms, the
 // texture unit's filters, the paths against the golden model, and the skipping of the
 // bump blocks by materials that do not use them.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 #include "shadetlm/core/bump_map.hpp"
 #include "shadetlm/core/compare.hpp"
@@ -339,4 +342,40 @@ TEST_CASE("a mirrored parameterization keeps bumps bumps, in every path and in t
       CHECK(core::compare_frames(frame, reference::to_frame(golden), o).layers.at(0).psnr > 40);
     }
   }
+}
+
+TEST_CASE("normal maps stored at 8, 10, 16 bits: the error grows as the bits fall, float is the floor", "[bump][accuracy]") {
+  // The golden model's truth stays the height field; only the map's storage changes.
+  double psnr[4];
+  const char* stored[4] = {"float", "unorm16", "unorm10", "unorm8"};
+  for (int k = 0; k < 4; ++k)
+    psnr[k] = psnr_against_golden(core::load_scene_text(bump_scene(kSphere, "bump-tangent"), "q", ".",
+                                                        {std::string("pipeline.bump_fetch.stored=") + stored[k]}));
+  INFO("PSNR float " << psnr[0] << ", unorm16 " << psnr[1] << ", unorm10 " << psnr[2] << ", unorm8 " << psnr[3]);
+  CHECK(psnr[1] > psnr[2]);
+  CHECK(psnr[2] > psnr[3]);
+  // 16 bits (a step of 3e-5) is below the filter's own error: within 0.1 dB of float.
+  CHECK(std::abs(psnr[1] - psnr[0]) < 0.1);
+}
+
+TEST_CASE("an 8-bit normal map file is read as (N + 1) / 2 and decoded as 2x - 1", "[bump]") {
+  // A 2×2 PNG whose texels hold the bytes of N = (0, 0, 1), (1, 0, 0), (0, -1, 0), (0.6, 0, 0.8).
+  const unsigned char bytes[4][3] = {{128, 128, 255}, {255, 128, 128}, {128, 0, 128}, {204, 128, 230}};
+  std::vector<unsigned char> rgb(bytes[0], bytes[0] + 12);
+  const auto dir = std::filesystem::temp_directory_path() / ("shadetlm-nm-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream((dir / "nm.png").string(), std::ios::binary) << core::encode_png(2, 2, rgb);
+  }
+  const std::string text = R"({"format": 1, "camera": {"resolution": [8, 8]},
+    "textures": {"nm": {"type": "image", "file": "nm.png", "colorspace": "srgb"}},
+    "materials": {"m": {"path": "bump-tangent", "normal_map": "nm"}},
+    "objects": [{"shape": "sphere", "material": "m"}]})";
+  const core::Scene scene = core::load_scene_text(text, "nm.json", dir.string());
+  const auto m = std::find_if(scene.materials.begin(), scene.materials.end(), [](const auto& x) { return x.name == "m"; });
+  REQUIRE(m != scene.materials.end());
+  const core::Texture& map = scene.textures[size_t(m->normal_map)];
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) CHECK(map.texels[size_t(i)][k] == Approx(bytes[i][k] / 255.0 * 2 - 1).margin(1e-6));
+  std::filesystem::remove_all(dir);
 }

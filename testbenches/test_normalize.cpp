@@ -26,7 +26,7 @@ TEST_CASE("forward-difference radicand follows |N|² within its rounding bound, 
     const float n0[3] = {comp(rng), comp(rng), comp(rng)};
     const float dh[3] = {comp(rng) * scale, comp(rng) * scale, comp(rng) * scale};
     const float c = 2.0f * (dh[0] * dh[0] + dh[1] * dh[1] + dh[2] * dh[2]);
-    modules::RadicandSequence<float> fd(n0, dh, c);
+    auto fd = modules::RadicandState<float>::seed(n0, dh, c);
     double r_max = 0, d_max = 0;
     for (int i = 0; i <= n; ++i) {
       double v[3];
@@ -38,7 +38,7 @@ TEST_CASE("forward-difference radicand follows |N|² within its rounding bound, 
       double v[3];
       for (int k = 0; k < 3; ++k) v[k] = double(n0[k]) + double(i) * double(dh[k]);
       const double exact = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-      const double err = std::abs(double(fd.next()) - exact);
+      const double err = std::abs(double(fd.next(c)) - exact);
       const double bound = u * ((i + 4) * r_max + (0.5 * i * i + i) * (d_max + c));
       REQUIRE(err <= bound);
       worst_ratio = std::max(worst_ratio, err / bound);
@@ -82,6 +82,62 @@ TEST_CASE("normalize: operation counts per pixel are what the code does", "[norm
   // pixel — the three left are the scaling of N by 1/sqrt(r).
   CHECK(modules::normalize_ops_per_pixel(NormalizeMode::ForwardDifference).mul == 3);
   CHECK(modules::normalize_ops_per_pixel(NormalizeMode::Exact).mul == 6);
+}
+
+TEST_CASE("normalize: a jump over hidden pixels costs what it declares and lands where the steps do", "[normalize]") {
+  using C = modules::Counted<float>;
+  const float n0[3] = {0.3f, -0.5f, 0.8f}, dh[3] = {0.01f, 0.0f, -0.02f};
+  const float c = 2.0f * (dh[0] * dh[0] + dh[1] * dh[1] + dh[2] * dh[2]);
+  for (int k : {1, 2, 7, 40}) {
+    auto stepped = modules::RadicandState<float>::seed(n0, dh, c);
+    for (int i = 0; i < k; ++i) stepped.next(c);
+    const C cn0[3] = {n0[0], n0[1], n0[2]}, cdh[3] = {dh[0], dh[1], dh[2]};
+    auto jumped = modules::RadicandState<C>::seed(cn0, cdh, C(c));
+    C::ops = {};
+    jumped.jump(k, C(c));
+    CHECK(C::ops == modules::normalize_ops_per_jump());
+    // In exact arithmetic both are |N_0 + k·ΔN_H|²; in float a few roundings apart.
+    CHECK(double(jumped.r.v) == Approx(double(stepped.r)).epsilon(1e-6));
+    CHECK(double(jumped.delta.v) == Approx(double(stepped.delta)).epsilon(1e-5));
+  }
+}
+
+TEST_CASE("normalize seed=line: carried along the line, jumped over gaps, seeded on a new line", "[normalize]") {
+  modules::TriangleSetup tri;
+  const float n0[3] = {0.2f, 0.6f, 0.7f}, dh[3] = {0.004f, -0.003f, 0.001f};
+  for (int k = 0; k < 3; ++k) tri.n[k].ax = dh[k];
+  tri.c = 2.0f * (dh[0] * dh[0] + dh[1] * dh[1] + dh[2] * dh[2]);
+  // Row 0: pixels 0–63 and 64–99 (one span cut at 64), then 120–150 after 20 hidden
+  // pixels; row 1: 0–9.
+  const int packets[4][3] = {{0, 0, 64}, {0, 64, 36}, {0, 120, 31}, {1, 0, 10}};
+  for (auto seed : {modules::RadicandSeed::Packet, modules::RadicandSeed::Line}) {
+    modules::NormalizeKernel kernel(NormalizeMode::ForwardDifference, {}, seed);
+    uint32_t first_work[4];
+    uint64_t pixels = 0;
+    for (int j = 0; j < 4; ++j) {
+      modules::SpanPacket p{};
+      p.tri = &tri, p.y = packets[j][0], p.x0 = packets[j][1], p.count = packets[j][2];
+      for (int i = 0; i < p.count; ++i)
+        for (int k = 0; k < 3; ++k) p.n[k][i] = n0[k] + float(p.x0 + i) * dh[k] + 0.01f * float(p.y);
+      kernel.process(p);
+      first_work[j] = kernel.work(p).at(0);
+      pixels += uint64_t(p.count);
+      for (int i = 0; i < p.count; ++i) {  // unit length, within the sequence's growth over 151 pixels
+        const double len = std::sqrt(double(p.n[0][i]) * p.n[0][i] + double(p.n[1][i]) * p.n[1][i] +
+                                     double(p.n[2][i]) * p.n[2][i]);
+        REQUIRE(std::abs(len - 1) < 2e-6);
+      }
+    }
+    const modules::Ops per_pixel = modules::normalize_ops_per_pixel(NormalizeMode::ForwardDifference) * pixels;
+    if (seed == modules::RadicandSeed::Packet) {
+      CHECK(kernel.ops() == per_pixel + modules::normalize_ops_per_span(NormalizeMode::ForwardDifference) * 4);
+      CHECK(std::vector<uint32_t>(first_work, first_work + 4) == std::vector<uint32_t>{2, 2, 2, 2});
+    } else {  // two seeds (rows 0 and 1), one jump (20 hidden pixels), one carry
+      CHECK(kernel.ops() == per_pixel + modules::normalize_ops_per_span(NormalizeMode::ForwardDifference) * 2 +
+                                modules::normalize_ops_per_jump());
+      CHECK(std::vector<uint32_t>(first_work, first_work + 4) == std::vector<uint32_t>{2, 1, 2, 2});
+    }
+  }
 }
 
 TEST_CASE("normalize: the SystemC block returns unit normals in every mode", "[normalize][systemc]") {

@@ -1,5 +1,6 @@
 #include "shadetlm/modules/bump_fetch/bump_fetch_kernel.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -13,8 +14,18 @@ bool BumpFetchKernel::needed(const core::Scene& scene) {
   return false;
 }
 
-BumpFetchKernel::BumpFetchKernel(const core::Scene& scene, const Options& options)
-    : scene_(scene), options_(options), sampler_(options.filter, options.probes) {
+namespace {
+// Each component as 2^bits − 1 levels of (N + 1) / 2, rounded to nearest, and back.
+void store_unorm(core::Texture& t, int bits) {
+  const float levels = float((1 << bits) - 1);
+  for (auto& texel : t.texels)
+    for (int k = 0; k < 3; ++k)
+      texel[k] = std::round(std::clamp((texel[k] + 1.0f) * 0.5f, 0.0f, 1.0f) * levels) / levels * 2.0f - 1.0f;
+}
+}  // namespace
+
+BumpFetchKernel::BumpFetchKernel(const core::Scene& scene, const Options& options, core::NumberFormat format)
+    : scene_(scene), options_(options), numbers_(format), sampler_(options.filter, options.probes) {
   const auto start = std::chrono::steady_clock::now();
   std::map<std::pair<int, int>, const Map*> made;  // (material, object or −1) → map
   for (size_t o = 0; o < scene.objects.size(); ++o) {
@@ -69,6 +80,10 @@ const BumpFetchKernel::Map& BumpFetchKernel::build(const core::Scene& scene, con
     }
   }
   if (map->levels.empty()) map->levels = core::mip_levels(map->base, renormalize);
+  if (options_.stored_bits > 0 && m.path != core::ShadingPath::BumpClassic) {
+    store_unorm(map->base, options_.stored_bits);
+    for (auto& l : map->levels) store_unorm(l, options_.stored_bits);
+  }
   map->mip.levels.push_back(&map->base);
   for (const auto& l : map->levels) map->mip.levels.push_back(&l);
   maps_.push_back(std::move(map));

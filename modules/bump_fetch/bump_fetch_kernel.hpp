@@ -11,6 +11,11 @@
 // pipeline is built, from the height map (core/bump_map.hpp) and, for the general
 // tangent and object forms, from the object's surface — so one per object. Phong
 // packets pass by untouched.
+//
+// Number formats: the filter is the texture unit's (float32, shared with texture_fetch);
+// the value it hands on (N' or Fu, Fv) is rounded to the block's format. The normal
+// maps' texels may be stored as a chip would, (N + 1) / 2 in 8, 10 or 16 bits
+// (`stored`); the derivative map of bump-classic stays float.
 #include <map>
 #include <memory>
 #include <string>
@@ -27,16 +32,22 @@ class BumpFetchKernel {
  public:
   struct Options : FilterSetting {
     bool renormalize_mips = true;
+    int stored_bits = 0;  // 0: float texels; 8, 10, 16: unsigned normalized, (N + 1) / 2
   };
-  BumpFetchKernel(const core::Scene& scene, const Options& options);
+  BumpFetchKernel(const core::Scene& scene, const Options& options, core::NumberFormat format = {});
   static bool needed(const core::Scene& scene);
 
   void process(SpanPacket& p) {
     fetch(p);
+    if (numbers_.format.kind != core::NumberFormat::Kind::Float32)
+      with_number_type(numbers_, [&](auto zero) {
+        using T = decltype(zero);
+        for (int c = 0; c < 3; ++c)
+          for (int i = 0; i < p.count; ++i) p.bump[c][i] = float(T(p.bump[c][i]));
+      });
     nonfinite_ += count_nonfinite(p.bump, p.count);
   }
-  // float32 datapaths; the non-finite values among the block's outputs.
-  NumberStats numbers() const { return {"float32", nonfinite_, {}}; }
+  NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
   const Ops& ops() const { return ops_; }
   // Four texels a cycle, at least one; the DRAM lines of each pixel under the DRAM model.
   Work work(const SpanPacket&) const { return {work_, 0, memory_ ? lines_ : nullptr}; }
@@ -64,6 +75,7 @@ class BumpFetchKernel {
 
   const core::Scene& scene_;
   Options options_;
+  NumberContext numbers_;
   Sampler sampler_;
   std::vector<std::unique_ptr<Map>> maps_;
   std::vector<const Map*> map_of_object_;  // by object index; nullptr: no bump map

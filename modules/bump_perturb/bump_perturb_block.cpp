@@ -5,11 +5,11 @@
 namespace shadetlm::modules {
 
 BlockDecl bump_perturb_block() {
-  BlockDecl d{"bump_perturb", {1, 1}, false, {}, BumpPerturbKernel::needed,
+  BlockDecl d{"bump_perturb", {1, 1}, true, {}, BumpPerturbKernel::needed,
               [](const BlockContext& ctx) -> std::unique_ptr<Block> {
                 // It interpolates as the normal interpolator does (N or N/w).
-                return std::make_unique<SpanBlock<BumpPerturbKernel>>(ctx.settings.string("normal_interp.mode") ==
-                                                                      "perspective");
+                return std::make_unique<SpanBlock<BumpPerturbKernel>>(
+                    ctx.settings.string("normal_interp.mode") == "perspective", ctx.format());
               }};
   // The critical path of N' = c·N + Fu (n × Pv) + Fv (Pu × n): a plane stepped (add),
   // times w (mul), times Fu (mul), two sums (docs/configuration.md, "Arithmetic units").

@@ -19,15 +19,13 @@ namespace shadetlm::modules {
 
 class BumpPerturbKernel {
  public:
-  explicit BumpPerturbKernel(bool perspective) : perspective_(perspective) {}
+  // The interpolators, the products and the sums are of `format` (pipeline.bump_perturb.format).
+  explicit BumpPerturbKernel(bool perspective, core::NumberFormat format = {})
+      : perspective_(perspective), numbers_(format) {}
   static bool needed(const core::Scene& scene);
 
-  void process(SpanPacket& p) {
-    perturb(p);
-    nonfinite_ += count_nonfinite(p.n, p.count);
-  }
-  // float32 datapaths; the non-finite values among the block's outputs.
-  NumberStats numbers() const { return {"float32", nonfinite_, {}}; }
+  void process(SpanPacket& p);
+  NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
   const Ops& ops() const { return ops_; }
   Work work(const SpanPacket&) const { return {nullptr, 1}; }  // a pixel a cycle
   bool bypass(const SpanPacket& p) const { return p.tri->material->path != core::ShadingPath::BumpClassic; }
@@ -48,11 +46,12 @@ class BumpPerturbKernel {
 
  private:
   bool perspective_;
+  NumberContext numbers_;
   Ops ops_;
   ValueRange n_x_pv_range_, pu_x_n_range_, perturbed_range_;
   bool capture_ = false;
   float captured_[2][kSpanMax] = {};
-  void perturb(SpanPacket& p);
+  template <class T> void perturb(SpanPacket& p);
   uint64_t nonfinite_ = 0;
 };
 

@@ -79,7 +79,9 @@ template <class T> T rsqrt_op(T x) { return T(1) / std::sqrt(x); }
 template <class T> T pow_op(T x, T e) { return std::pow(x, e); }
 template <class T> T max_op(T a, T b) { return a > b ? a : b; }
 template <class T> Counted<T> sqrt_op(Counted<T> x) { ++Counted<T>::ops.sqrt; return std::sqrt(x.v); }
-template <class T> Counted<T> rsqrt_op(Counted<T> x) { ++Counted<T>::ops.rsqrt; return T(1) / std::sqrt(x.v); }
+// (computed as T's 1 / √x: a square root and a division, as counted; a format with a
+// correctly rounded rsqrt unit — float16, fixed point — has its own rsqrt_op)
+template <class T> Counted<T> rsqrt_op(Counted<T> x) { ++Counted<T>::ops.sqrt, ++Counted<T>::ops.div; return T(1) / std::sqrt(x.v); }
 // The specular power is one table look-up in hardware (it is powf here).
 template <class T> Counted<T> pow_op(Counted<T> x, Counted<T> e) { ++Counted<T>::ops.lut; return std::pow(x.v, e.v); }
 

@@ -1,4 +1,5 @@
 // The normalize block's declaration (modules/common/declaration.hpp).
+#include "shadetlm/core/input_error.hpp"
 #include "shadetlm/modules/common/declaration.hpp"
 #include "shadetlm/modules/normalize/normalize_kernel.hpp"
 #include "shadetlm/modules/normalize/normalize_rtl.hpp"
@@ -31,15 +32,23 @@ Timing resolved_timing(const BlockContext& ctx) {
 BlockDecl normalize_block() {
   BlockDecl d{"normalize", {1, 1}, true,
               {{"mode", "exact", normalize_mode_names(), 0, 0, "how the normal is normalized"},
+               {"seed", "packet", radicand_seed_names(), 0, 0,
+                "forward-difference mode: the radicand seeded at every packet, or once per raster line and "
+                "carried from packet to packet (docs/pipeline.md)"},
                {"impl", "kernel", {"kernel", "rtl"}, 0, 0,
                 "the C++ kernel, or the RTL unit verilated into the loop (docs/rtl.md)"}},
               {},  // always: every shading path lights a unit normal
               [](const BlockContext& ctx) -> std::unique_ptr<Block> {
                 const NormalizeMode mode = parse_normalize_mode(ctx.string("mode"));
+                const bool per_line = ctx.string("seed") == "line";
+                if (ctx.string("impl") == "rtl" && per_line && mode == NormalizeMode::ForwardDifference)
+                  throw core::InputError(ctx.scene.file, "pipeline.normalize.seed",
+                                         "line: the RTL unit (impl=rtl) seeds its radicand at every packet");
                 if (ctx.string("impl") == "rtl")
                   return std::make_unique<SpanBlock<NormalizeRtlKernel>>(mode, ctx.format(), resolved_timing(ctx),
                                                                          ctx.scene.file);
-                return std::make_unique<SpanBlock<NormalizeKernel>>(mode, ctx.format());
+                return std::make_unique<SpanBlock<NormalizeKernel>>(
+                    mode, ctx.format(), per_line ? RadicandSeed::Line : RadicandSeed::Packet);
               }};
   d.units = [](const BlockContext& ctx) { return normalize_units(parse_normalize_mode(ctx.string("mode")), ctx.settings); };
   d.vectors = true;  // the words at the pins of rtl/normalize/normalize_unit.sv

@@ -7,6 +7,10 @@
 //                         R_0 = |N_0|², δ_0 = 2 N_0·ΔN_H + |ΔN_H|², R_{n+1} = R_n + δ_n,
 //                         δ_{n+1} = δ_n + c, c = 2|ΔN_H|² (from setup);
 //                       two additions per pixel and no multiplication, then N · rsqrt(r);
+//                       seeded at every packet (seed=packet), or once per raster line
+//                       of a triangle and carried from packet to packet (seed=line),
+//                       over a gap of k hidden pixels in one jump:
+//                         R_{n+k} = R_n + k·δ_n + k(k−1)/2·c, δ_{n+k} = δ_n + k·c;
 //                       a bump-mapped packet, whose normals do not step by ΔN_H, takes
 //                       r direct into the same rsqrt unit
 //   rsqrt0|1|2          r direct; the bit-level inverse square root estimate
@@ -82,21 +86,27 @@ T radicand(const T n[3]) {
 }
 
 // |N_n|² along a span N_n = N_0 + n·ΔN_H by second-order differences (formulas
-// (13)–(16)): seeded once per span, then two additions per pixel.
+// (13)–(16)): R_n and δ_n at the next pixel.
 template <class T>
-class RadicandSequence {
- public:
-  RadicandSequence(const T n0[3], const T dh[3], T c)
-      : r_(radicand(n0)), delta_(T(2.0f) * (n0[0] * dh[0] + n0[1] * dh[1] + n0[2] * dh[2]) + T(0.5f) * c), c_(c) {}
-  T next() {  // R_n, then advances to R_{n+1}
-    const T r = r_;
-    r_ = r_ + delta_;
-    delta_ = delta_ + c_;
-    return r;
+struct RadicandState {
+  T r, delta;
+  // The seed at N_0: R_0 = |N_0|², δ_0 = 2 N_0·ΔN_H + c/2 (8 multiplications, 5 additions).
+  static RadicandState seed(const T n0[3], const T dh[3], T c) {
+    return {radicand(n0), T(2.0f) * (n0[0] * dh[0] + n0[1] * dh[1] + n0[2] * dh[2]) + T(0.5f) * c};
   }
-
- private:
-  T r_, delta_, c_;
+  T next(T c) {  // R_n, then advances to R_{n+1}: two additions
+    const T now = r;
+    r = r + delta;
+    delta = delta + c;
+    return now;
+  }
+  // k > 0 pixels at once, over hidden pixels: 3 multiplications, 3 additions
+  // (k(k−1)/2 is an integer of the gap counter, exact in any format that holds it).
+  void jump(int k, T c) {
+    const T kt = T(float(k)), steps = T(float(int64_t(k) * (k - 1) / 2));
+    r = r + kt * delta + steps * c;
+    delta = delta + kt * c;
+  }
 };
 
 // Normalizes each pixel with its radicand computed directly; one straight loop per
@@ -113,8 +123,11 @@ void normalize_pixels(T* nx, T* ny, T* nz, int count) {
 // Normalizes the `count` (≤ kSpanMax) normals of a span whose normals step by dh (ΔN_H)
 // from one pixel to the next; c = 2|ΔN_H|².
 // With `direct`, forward-difference mode takes each radicand directly (bump packets).
+// Forward-difference mode starts from `carried` (R and δ at nx[0]) when given, else
+// seeds at nx[0]; it leaves in `carried` the state after the span.
 template <class T>
-void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, NormalizeMode mode, bool direct = false) {
+void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, NormalizeMode mode, bool direct = false,
+                    RadicandState<T>* carried = nullptr) {
   if (mode == NormalizeMode::ForwardDifference && direct)
     return normalize_pixels<NormalizeMode::ForwardDifference>(nx, ny, nz, count);
   if (mode == NormalizeMode::ForwardDifference) {
@@ -122,9 +135,10 @@ void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, Normaliz
     const T n0[3] = {nx[0], ny[0], nz[0]};
     // The radicands first (a chain of additions), then the scaling in a straight loop
     // of its own, which vectorizes.
-    RadicandSequence<T> radicands(n0, dh, c);
+    RadicandState<T> radicands = carried ? *carried : RadicandState<T>::seed(n0, dh, c);
     T r[kSpanMax];
-    for (int i = 0; i < count; ++i) r[i] = radicands.next();
+    for (int i = 0; i < count; ++i) r[i] = radicands.next(c);
+    if (carried) *carried = radicands;
     for (int i = 0; i < count; ++i) {
       T n[3] = {nx[i], ny[i], nz[i]};
       scale_by_rsqrt(n, r[i], mode);
@@ -140,17 +154,27 @@ void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, Normaliz
   }
 }
 
-// Operations per pixel and per packet (span), as the code above performs them.
-Ops normalize_ops_per_pixel(NormalizeMode mode);
+// Operations per pixel and per packet (span), as the code above performs them; with
+// `rsqrt_unit` (float16, fixed point) forward-difference mode's 1/√r is one rsqrt, else
+// (float32) a square root and a division.
+Ops normalize_ops_per_pixel(NormalizeMode mode, bool rsqrt_unit = false);
 Ops normalize_ops_per_span(NormalizeMode mode);
+// Forward-difference mode with seed=line: a packet that continues its raster line after
+// hidden pixels jumps the carried radicand (RadicandState::jump).
+Ops normalize_ops_per_jump();
+
+// Where the forward-difference radicand starts a packet.
+enum class RadicandSeed { Packet, Line };
+const std::vector<std::string>& radicand_seed_names();  // "packet", "line"
 // Forward-difference mode's bump packets: the radicand direct, then the rsqrt unit.
-Ops normalize_ops_per_pixel_direct_rsqrt();
+Ops normalize_ops_per_pixel_direct_rsqrt(bool rsqrt_unit = false);
 
 class NormalizeKernel {
  public:
   // The radicand and inverse square root datapaths are of `format`
   // (pipeline.normalize.format).
-  explicit NormalizeKernel(NormalizeMode mode, core::NumberFormat format = {}) : mode_(mode), numbers_(format) {
+  explicit NormalizeKernel(NormalizeMode mode, core::NumberFormat format = {}, RadicandSeed seed = RadicandSeed::Packet)
+      : mode_(mode), seed_(seed), numbers_(format) {
     for (auto& w : seeded_) w = 1;
     seeded_[0] = 2;
   }
@@ -158,12 +182,19 @@ class NormalizeKernel {
   Ops ops() const;
   NormalizeMode mode() const { return mode_; }
   // A pixel a cycle; the forward-difference radicand's seed (R0, δ0: 8 multiplications,
-  // 5 additions) takes the multipliers a cycle before each packet's first pixel.
+  // 5 additions) or jump (3, 3) takes the multipliers a cycle before the packet's first
+  // pixel; a packet that continues its line where the last one ended needs neither.
   Work work(const SpanPacket&) const {
-    return mode_ == NormalizeMode::ForwardDifference ? Work{seeded_, 0} : Work{nullptr, 1};
+    return mode_ == NormalizeMode::ForwardDifference && start_ != Start::Carry ? Work{seeded_, 0} : Work{nullptr, 1};
   }
   bool bypass(const SpanPacket&) const { return false; }
   NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
+  // Pixels and packets normalized (in either engine), (forward-difference mode) radicands
+  // seeded and jumped, and the pixels taking the radicand direct there (bump packets).
+  nlohmann::json details() const {
+    return {{"pixels", tally_.pixels[0] + tally_.pixels[1]}, {"packets", tally_.packets[0] + tally_.packets[1]},
+            {"seeds", seeds_}, {"jumps", jumps_}, {"direct_pixels", tally_.pixels[1]}};
+  }
   // Waveforms: the radicand |N|² of the incoming normal (kept only for traced
   // packets) and the normalized normal.
   void set_capture(bool on) { capture_ = on; }
@@ -182,7 +213,23 @@ class NormalizeKernel {
   template <class T> void normalize_as(SpanPacket& p, bool direct);
   uint64_t word(float v) const;  // v at the pins: the format's raw word, or float32 bits
 
+  // How the last packet's radicand started (forward-difference mode): seeded, jumped over
+  // hidden pixels of its line, or carried on from the pixel before.
+  enum class Start { Seed, Jump, Carry };
+  Start start_of(const SpanPacket& p, bool direct) const;
+  // seed=line: the raster line the carried radicand belongs to, and R, δ at next_x.
+  struct Line {
+    bool open = false;
+    uint32_t triangle = 0;
+    int y = 0, next_x = 0;
+    double r = 0, delta = 0;  // (holds any format's value exactly)
+  };
+
   NormalizeMode mode_;
+  RadicandSeed seed_;
+  Start start_ = Start::Seed;
+  Line line_;
+  uint64_t seeds_ = 0, jumps_ = 0;  // forward-difference packets seeded, jumped
   uint16_t seeded_[kSpanMax];
   PacketTally<2> tally_;  // packets of mode_ (0); forward-difference mode's bump packets, radicand direct (1)
   NumberContext numbers_;

@@ -162,8 +162,9 @@ Work NormalizeRtlKernel::work(const SpanPacket&) const {
 }
 
 Ops NormalizeRtlKernel::ops() const {
-  return normalize_ops_per_pixel(mode_) * tally_.pixels[0] + normalize_ops_per_span(mode_) * tally_.packets[0] +
-         normalize_ops_per_pixel_direct_rsqrt() * tally_.pixels[1];
+  // (the RTL is fixed point: one rsqrt unit)
+  return normalize_ops_per_pixel(mode_, true) * tally_.pixels[0] + normalize_ops_per_span(mode_) * tally_.packets[0] +
+         normalize_ops_per_pixel_direct_rsqrt(true) * tally_.pixels[1];
 }
 
 nlohmann::json NormalizeRtlKernel::details() const {
