@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
-
 
 namespace shadetlm::core {
 
@@ -54,7 +54,6 @@ double difference(float a, float b) {
   if (!std::isfinite(a) || !std::isfinite(b)) return std::numeric_limits<double>::infinity();
   return std::abs(double(a) - double(b));
 }
-
 
 }  // namespace
 

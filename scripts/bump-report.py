@@ -83,11 +83,13 @@ print("Sphere (`scenes/bump/sphere.json`, 256×192); operations per shaded pixel
       "(setup's per-triangle work included); the texture fetch counted apart. Under a directional light "
       "with the viewer at infinity, Phong needs no L and H interpolation at all; under a point light with a "
       "local viewer it interpolates and normalizes them, as the paper's Fig. 1 hardware always does.\n")
-print("| lighting | path | blocks working | arithmetic / px | of which bump_fetch | of which setup | the rest: per-pixel datapaths | texel fetches / px | memory lines / px | cycles / px | bottleneck | run time (ms) |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+print("| lighting | path | blocks working | arithmetic / px | of which bump_fetch | of which setup | the rest: per-pixel datapaths | without the texture unit (arithmetic / px less bump_fetch's) | texel fetches / px | memory lines / px | cycles / px | bottleneck | run time (ms) | PSNR (dB) |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 LOCAL = ["camera.local_viewer=true", 'lights=[{"type":"point","position":[2,2,3]}]']
-for lighting, extra, path in [(l, e, p) for l, e in [("directional, at infinity", []), ("point, local viewer", LOCAL)]
-                              for p in PATHS]:
+H_FIG1 = "pipeline.vector_interp.h=interpolated"
+for lighting, extra, path, label in [(l, e, p, p) for l, e in [("directional, at infinity", []), ("point, local viewer", LOCAL)]
+                                     for p in PATHS] + [("point, local viewer", LOCAL + [H_FIG1], "phong",
+                                                         "phong, H interpolated (Fig. 1)")]:
     preview = os.path.join(IMAGES, "bump-report-" + path + ".png") if IMAGES and not extra else None
     s, _ = render("sphere", path_sets(path, "sphere") + extra, preview=preview)
     blocks = [b for b in ["normal_interp", "bump_fetch", "bump_perturb", "normal_mux", "normalize", "vector_interp"]
@@ -95,10 +97,11 @@ for lighting, extra, path in [(l, e, p) for l, e in [("directional, at infinity"
     total = per_pixel(s, ARITH)
     fetch_arith = block_per_pixel(s, "bump_fetch", ARITH)
     setup_arith = block_per_pixel(s, "setup", ARITH)
-    print("| %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f | %s | %.1f |" % (
-        lighting, path, ", ".join(blocks), total, fetch_arith, setup_arith, total - fetch_arith - setup_arith,
-        per_pixel(s, ["fetch"]),
-        per_pixel(s, ["line"]), s["frame_cycles"] / s["pixels"]["shaded"], s["bottleneck"], 1000 * s["wall_s"]))
+    print("| %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f | %.2f | %.2f | %s | %.1f | %s |" % (
+        lighting, label, ", ".join(blocks), total, fetch_arith, setup_arith, total - fetch_arith - setup_arith,
+        total - fetch_arith, per_pixel(s, ["fetch"]),
+        per_pixel(s, ["line"]), s["frame_cycles"] / s["pixels"]["shaded"], s["bottleneck"], 1000 * s["wall_s"],
+        db(err(s)[2])))
 print("\nBlocks working: those between raster and lighting that process packets of the path (elaborated "
       "blocks that the path bypasses are left out: `normal_interp` for the fetched-normal paths). Setup is per "
       "triangle (this sphere has about 10 pixels a triangle). Cycles per pixel: frame cycles over shaded pixels, "
@@ -228,6 +231,26 @@ for filt, probes in [("nearest", 1), ("bilinear", 1), ("trilinear", 1), ("anisot
             cost = "%.2f | %.2f" % (per_pixel(s, ["fetch"]), per_pixel(s, ["line"]))
         row += [" / ".join(vals), cost]
     print("| " + " | ".join(row) + " |")
+
+print("\n### Stored normal maps\n")
+print("The fetched-normal paths with their maps stored as a chip would (`pipeline.bump_fetch.stored`): "
+      "(N + 1) / 2 in 8, 10 or 16 bits a component, rounded to nearest, mip levels too. PSNR (dB) against the "
+      "golden model (its truth stays the height field), and in brackets the largest colour difference from the "
+      "float map's frame.\n")
+STORED = ["float", "unorm16", "unorm10", "unorm8"]
+print("| surface | path | " + " | ".join(STORED) + " |")
+print("|---|---|" + "---|" * len(STORED))
+for surface in SURFACES:
+    for path in ["bump-tangent", "bump-object"]:
+        cells, base = [], None
+        for stored in STORED:
+            st, exr = render(surface, path_sets(path, surface) + ["pipeline.bump_fetch.stored=" + stored], stored)
+            if base is None:
+                base, cells = exr, [db(err(st)[2])]
+                continue
+            out = subprocess.run([BIN, "compare", exr, base, "--layer", "RGB", "--json"], stdout=subprocess.PIPE, text=True)
+            cells.append("%s (%.1e)" % (db(err(st)[2]), float(json.loads(out.stdout)["layers"]["RGB"]["max"])))
+        print("| %s | %s | %s |" % (surface, path, " | ".join(cells)))
 
 print("\n### The square-patch assumption\n")
 print("bump-square against bump-tangent, the same filter and L, H: the difference between their frames is the "

@@ -15,7 +15,13 @@ raster line:
 The difference is taken from the pipeline's own float32 frame, so that it measures the
 format alone (each method's error against the golden model is in the other reports).
 
-Usage: scripts/format-report.py SHADETLM ROOT"""
+With --bump, the bump-mapping paper's two datapaths instead (claim 2's precision, seed
+000): on scenes/bump/*.json, each block of the classic path (bump-classic: bump_fetch's
+Fu, Fv, bump_perturb, normalize, lighting) and of the proposed one (bump-tangent:
+bump_fetch's N', vector_interp's L and H in tangent space, normalize, lighting) under a
+point light and a local viewer, so that L and H are interpolated.
+
+Usage: scripts/format-report.py SHADETLM ROOT [--bump]"""
 import concurrent.futures
 import glob
 import json
@@ -26,6 +32,7 @@ import sys
 import tempfile
 
 BIN, ROOT = sys.argv[1], sys.argv[2]
+BUMP = "--bump" in sys.argv[3:]
 TMP = tempfile.mkdtemp(prefix="formats-")
 # (label, block, the settings it runs under, in its float32 baseline too)
 FD = "pipeline.normalize.mode=forward-difference"
@@ -33,11 +40,18 @@ VARIANTS = [("normal_interp", "normal_interp", []), ("normalize", "normalize", [
             ("normalize, forward-difference per packet", "normalize", [FD]),
             ("normalize, forward-difference per line", "normalize", [FD, "pipeline.normalize.seed=line"]),
             ("vector_interp", "vector_interp", []), ("lighting", "lighting", []),
-            ("texel_project", "texel_project", []), ("parallax", "parallax", [])]
+            ("texel_project", "texel_project", []), ("parallax", "parallax", []),
+            ("bump_fetch", "bump_fetch", []), ("bump_perturb", "bump_perturb", [])]
+if BUMP:
+    LOCAL = ["camera.local_viewer=true", 'lights=[{"type":"point","position":[2,2,3]}]']
+    PATHS = [("classic", "bump-classic", ["bump_fetch", "bump_perturb", "normalize", "lighting"]),
+             ("proposed", "bump-tangent", ["bump_fetch", "vector_interp", "normalize", "lighting"])]
+    VARIANTS = [("%s, %s" % (block, name), block, ["materials.bumpy.path=" + path] + LOCAL)
+                for name, path, blocks in PATHS for block in blocks]
 BLOCK = {label: block for label, block, _ in VARIANTS}
 SETS = {label: sets for label, _, sets in VARIANTS}
 BOUNDS = [("1/255", 1 / 255), ("2^-12", 2 ** -12)]
-SCENES = sorted(glob.glob(os.path.join(ROOT, "scenes/stress/*.json")))
+SCENES = sorted(glob.glob(os.path.join(ROOT, "scenes/bump/*.json" if "--bump" in sys.argv[3:] else "scenes/stress/*.json")))
 JOBS = max(1, os.cpu_count() or 1)
 renders = 0
 
@@ -172,9 +186,9 @@ for block, _, _ in VARIANTS:
     rows.append((block, half, combined))
     print("... %s done (%d renders so far)" % (block, renders), file=sys.stderr)
 
-print("### Per block, on every stress scene it works on\n")
+print("### Per block, on every %s scene it works on\n" % ("bump" if BUMP else "stress"))
 print("The fewest bits 1 + I + F of `fixed:I.F` for the block alone (the others float32) that keep "
-      "every covered pixel's colour within the bound of the float32 frame, on every stress scene a width "
+      "every covered pixel's colour within the bound of the float32 frame, on every scene a width "
       "of at most 52 bits can serve; the scenes none can are listed. I: no saturation on any of "
       "them (the scene that needs the most named); F: the most any of them needs.\n")
 print("| block | float16: largest colour difference (scene) | float16: non-finite / overflows / invalid "
@@ -206,5 +220,5 @@ for scene in SCENES:
             return "×" if i is None or f[label] is None else "%d.%d" % (i, f[label])
         cells.append("%s (%s)" % (one("1/255"), one("2^-12")))
     print("| %s | %s |" % (name(scene), " | ".join(cells)))
-print("\n%d renders, %d stress scenes." % (renders, len(SCENES)))
+print("\n%d renders, %d %s scenes." % (renders, len(SCENES), "bump" if BUMP else "stress"))
 shutil.rmtree(TMP, ignore_errors=True)

@@ -2,9 +2,22 @@
 # The number formats per block on the stress scenes: float16's colour difference and
 # events, and the fewest fixed-point bits per block that keep the colour within 1/255
 # and 2^-12 of float32 (docs/numerical-stability.md). Prints a Markdown table.
-# Usage: scripts/format-report.sh [shadetlm binary]
+# With --bump, the bump-mapping paper's classic and proposed datapaths on scenes/bump
+# instead (into docs/bump-mapping.md with --doc).
+# Usage: scripts/format-report.sh [--doc] [--bump] [shadetlm binary]   (--doc: the tables
+#   into their page, between its markers)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+doc=0 bump=()
+[[ ${1:-} == --doc ]] && { doc=1; shift; }
+[[ ${1:-} == --bump ]] && { bump=(--bump); shift; }
 bin=${1:-$root/build/app/shadetlm}
 [[ -x $bin ]] || { "$root/scripts/build.sh" >/dev/null; bin=$root/build/app/shadetlm; }
-python3 "$root/scripts/format-report.py" "$bin" "$root"
+out=$(mktemp)
+trap 'rm -f "$out"' EXIT
+python3 "$root/scripts/format-report.py" "$bin" "$root" "${bump[@]}" | tee "$out"
+if ((doc)) && ((${#bump[@]})); then
+  python3 "$root/scripts/doc-tables.py" "$out" "$root/docs/bump-mapping.md" bump-formats 2
+elif ((doc)); then
+  python3 "$root/scripts/doc-tables.py" "$out" "$root/docs/numerical-stability.md" formats 2
+fi

@@ -10,6 +10,7 @@ which testbenches/test_normalize.cpp checks against a counting number type.
 Usage: scripts/radicand-report.py SHADETLM ROOT"""
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -29,12 +30,22 @@ SCENES = [("golden/sphere", "golden/sphere/scene.json", []),
           ("golden/grazing-plane", "golden/grazing-plane/scene.json", []),
           ("golden/sphere 960×720", "golden/sphere/scene.json", ["camera.resolution=[960,720]"]),
           ("benchmark 1920×1080", "scenes/bench-1080p.json", []),
-          ("stress/long-spans", "scenes/stress/long-spans.json", [])]
+          ("stress/long-spans", "scenes/stress/long-spans.json", []),
+          ("stress/opposite-normals", "scenes/stress/opposite-normals.json", []),
+          ("a quad behind a smaller one", os.path.join(TMP, "gaps.json"), [])]
+# Hidden gaps inside a triangle's rows need an occluder narrower than the triangle: a
+# small quad in front of one of a large quad's two triangles.
+with open(os.path.join(TMP, "gaps.json"), "w") as f:
+    json.dump({"format": 1, "camera": {"position": [0, 0, 3], "target": [0, 0, 0], "resolution": [256, 192]},
+               "lights": [{"type": "point", "position": [1, 1, 2]}],
+               "objects": [{"shape": "plane", "size": [0.5, 0.5], "transform": {"translate": [0.5, -0.5, 0.5]}},
+                           {"shape": "plane", "size": [2, 2]}]}, f)
 
 
 def normalize_stats(scene, sets):
     stats = os.path.join(TMP, "s.json")
-    cmd = [BIN, "render", os.path.join(ROOT, scene), "--engine", "loop", "-o", os.path.join(TMP, "f.exr"), "--stats", stats]
+    cmd = [BIN, "render", os.path.join(ROOT, scene), "--engine", "loop", "-o", os.path.join(TMP, "f.exr"), "--stats", stats,
+           "--allow-nonfinite"]  # counted below
     for s in sets:
         cmd += ["--set", s]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
@@ -47,9 +58,9 @@ def per_pixel(b):
     return pixels, ops["mul"] / pixels, ops["add"] / pixels, (ops["sqrt"] + ops["div"] + ops["rsqrt"]) / pixels
 
 
-print("| scene | pixels | pixels a packet | pixels a line seed (jumps a line) | mul / px: direct, per packet, per line "
-      "| add / px: direct, per packet, per line | roots / px: direct, per packet, per line |")
-print("|---|---:|---:|---:|---|---|---|")
+print("| scene | pixels | pixels a packet | pixels a line seed (jumps) | mul / px: direct, per packet, per line "
+      "| add / px: direct, per packet, per line | roots / px: direct, per packet, per line | non-finite normals: direct, per packet, per line |")
+print("|---|---:|---:|---:|---|---|---|---|")
 samples = []  # (pixels, seeds, direct ops, per-packet ops) per scene
 for label, scene, sets in SCENES:
     b = {m: normalize_stats(scene, sets + s) for m, s in MODES}
@@ -58,10 +69,11 @@ for label, scene, sets in SCENES:
     if pixels == 0:
         continue
     packet, line = b["per packet"]["details"], b["per line"]["details"]
-    print("| %s | %d | %.2f | %.2f (%.2f) | %.2f, %.2f, %.2f | %.2f, %.2f, %.2f | %.2f, %.2f, %.2f |" % (
-        label, pixels, pixels / packet["seeds"], pixels / line["seeds"], line["jumps"] / line["seeds"],
+    print("| %s | %d | %.2f | %.2f (%d) | %.2f, %.2f, %.2f | %.2f, %.2f, %.2f | %.2f, %.2f, %.2f | %s |" % (
+        label, pixels, pixels / packet["seeds"], pixels / line["seeds"], line["jumps"],
         f["direct"][1], f["per packet"][1], f["per line"][1], f["direct"][2], f["per packet"][2], f["per line"][2],
-        f["direct"][3], f["per packet"][3], f["per line"][3]))
+        f["direct"][3], f["per packet"][3], f["per line"][3],
+        ", ".join(str(b[m]["numbers"]["nonfinite"]) for m in ("direct", "per packet", "per line"))))
     samples.append((pixels, packet["seeds"], b["direct"]["ops"], b["per packet"]["ops"]))
 
 # Per pixel and per seed, solved from two scenes' counts (ops = a·pixels + s·seeds), then
@@ -77,3 +89,4 @@ for name, ops in (("multiplications", ("mul",)), ("multiplications and additions
     direct, fd, seed = (sum(costs[o][k] for o in ops) for k in range(3))
     n = next(n for n in range(1, 1000) if fd * n + seed < direct * n)
     print("| %s | %g | %g | %g | %d pixels a seed |" % (name, direct, fd, seed, n))
+shutil.rmtree(TMP, ignore_errors=True)

@@ -5,10 +5,19 @@
 # per pixel; parallel splat units). The photograph is skimage's astronaut (CC0), taken
 # from the Debian package python3-skimage into out/assets (downloaded, not installed;
 # without it the photograph's table is left out). About 120 renders, a few minutes.
-# Usage: scripts/texture-report.sh [--images DIR]
+# Usage: scripts/texture-report.sh [--doc] [--images DIR]   (--doc: the tables into
+#   docs/object-space-texturing.md, between their markers)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
 "$root/scripts/build.sh" >/dev/null
+doc=0
+[[ ${1:-} == --doc ]] && { doc=1; shift; }
 photo=$("$root/scripts/skimage-asset.sh" astronaut.png)
-exec python3 "$root/scripts/texture-report.py" "$root/build/app/shadetlm" "$photo" "$@"
+out=$(mktemp)
+trap 'rm -f "$out"' EXIT
+python3 "$root/scripts/texture-report.py" "$root/build/app/shadetlm" "$photo" "$@" | tee "$out"
+if ((doc)); then
+  n=$(grep -c '^|---' "$out")
+  python3 "$root/scripts/doc-tables.py" "$out" "$root/docs/object-space-texturing.md" texture "$n"
+fi

@@ -379,3 +379,32 @@ TEST_CASE("an 8-bit normal map file is read as (N + 1) / 2 and decoded as 2x - 1
     for (int k = 0; k < 3; ++k) CHECK(map.texels[size_t(i)][k] == Approx(bytes[i][k] / 255.0 * 2 - 1).margin(1e-6));
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("Phong's H interpolated as Fig. 1 draws it: fewer operations a pixel, less exact near a point light", "[bump][accuracy]") {
+  struct Run {
+    double psnr;
+    modules::Ops vector_ops;
+  };
+  auto run = [](const std::string& h) {
+    const core::Scene scene =
+        core::load_scene(test::source_path("golden/point-light/scene.json"), {"pipeline.vector_interp.h=" + h});
+    const modules::RenderResult r = modules::render_loop(scene);
+    core::CompareOptions o;
+    o.layers = {"RGB"};
+    const double psnr = core::compare_frames(r.frame, reference::to_frame(reference::render(scene)), o).layers.at(0).psnr;
+    for (const auto& b : r.blocks)
+      if (b.name == "vector_interp") return Run{psnr, b.stats.ops};
+    FAIL("no vector_interp block");
+    return Run{};
+  };
+  const Run pixel = run("pixel"), interpolated = run("interpolated");
+  INFO("PSNR per-pixel H " << pixel.psnr << ", interpolated H " << interpolated.psnr);
+  // Per pixel: V's interpolation and normalization and L̂ + V̂ (6 mul, 5 add, a sqrt, a
+  // div) drop out; H's interpolation (3 mul, 3 add) comes in.
+  CHECK(interpolated.vector_ops.mul < pixel.vector_ops.mul);
+  CHECK(interpolated.vector_ops.sqrt < pixel.vector_ops.sqrt);
+  // H is not affine over a triangle: interpolating it costs accuracy near the light
+  // (measured 37.3 against 131.5 dB), yet stays a picture of the highlight.
+  CHECK(interpolated.psnr < pixel.psnr - 20);
+  CHECK(interpolated.psnr > 30);
+}

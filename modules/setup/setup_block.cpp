@@ -24,10 +24,11 @@ class SetupBlock : public KernelBlock<SetupKernel, Setup> {
 BlockDecl setup_block() {
   BlockDecl d{"setup", {16, 8}, false, {}, {}, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
                 // It sets up the planes the interpolators read: N or N/w as normal_interp
-                // steps, L and V for affine bump vectors as vector_interp reads them.
+                // steps, L and V for affine bump vectors and H's planes as vector_interp reads them.
                 return std::make_unique<SetupBlock>(ctx.scene,
                                                     ctx.settings.string("normal_interp.mode") == "perspective",
-                                                    ctx.settings.string("vector_interp.bump_vectors") == "affine");
+                                                    ctx.settings.string("vector_interp.bump_vectors") == "affine",
+                                                    ctx.settings.string("vector_interp.h") == "interpolated");
               }};
   d.fifo = BlockDecl::Fifo::None;  // the source
   return d;

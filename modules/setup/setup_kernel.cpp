@@ -7,10 +7,11 @@
 
 namespace shadetlm::modules {
 
-SetupKernel::SetupKernel(const core::Scene& scene, bool perspective, bool affine_bump_vectors)
+SetupKernel::SetupKernel(const core::Scene& scene, bool perspective, bool affine_bump_vectors, bool interpolate_h)
     : scene_(scene),
       perspective_(perspective),
       affine_bump_vectors_(affine_bump_vectors),
+      interpolate_h_(interpolate_h),
       view_projection_(scene.camera.projection() * scene.camera.view()),
       point_lights_(modules::point_lights(scene)),
       local_viewer_(scene.camera.local_viewer) {}
@@ -89,6 +90,7 @@ bool SetupKernel::setup(const Vertex v[3], const core::SnappedTriangle& coverage
     for (int c = 0; c < 2; ++c) perspective_plane(t.uv[c], v[0].uv[c], v[1].uv[c], v[2].uv[c]);
   if (core::bump_path(t.material->path)) setup_bump(v, inv_w, ps, pu_, pv_, t, ops);
   if (t.material->path == core::ShadingPath::Parallax) setup_parallax(v, inv_w, ps, t, ops);
+  if (interpolate_h_ && !core::fetches_normal(t.material->path)) setup_world_h(v, inv_w, ps, t, ops);
   ops_ += ops;
   return true;
 }
@@ -129,6 +131,30 @@ void solve_planes(const PlaneSolver<float>& ps, const float inv_w[3], Plane out[
   ops.mul += 9;
 }
 }  // namespace
+
+// Fig. 1's H: H = normalize(L̂ + V̂) at the vertices, of every light whose H is not a
+// constant (a point light, or any light under a local viewer), as planes over w.
+void SetupKernel::setup_world_h(const Vertex v[3], const float inv_w[3], const PlaneSolver<float>& ps,
+                                TriangleSetup& t, Ops& ops) const {
+  const core::Camera& cam = scene_.camera;
+  for (size_t light = 0; light < scene_.lights.size() && light < size_t(kMaxLights); ++light) {
+    const core::Light& l = scene_.lights[light];
+    const bool point = l.type == core::Light::Type::Point;
+    if (!point && !local_viewer_) continue;
+    glm::dvec3 hv[3];
+    for (int k = 0; k < 3; ++k) {
+      glm::dvec3 L = -l.direction, V = -cam.forward();
+      if (point) L = l.position - v[k].position, ops += Ops{/*add*/ 3};
+      if (local_viewer_) V = cam.position - v[k].position, ops += Ops{/*add*/ 3};
+      L = glm::dot(L, L) > 0 ? glm::normalize(L) : v[k].normal;
+      V = glm::dot(V, V) > 0 ? glm::normalize(V) : v[k].normal;
+      const glm::dvec3 h = L + V;
+      hv[k] = glm::dot(h, h) > 0 ? glm::normalize(h) : v[k].normal;
+      ops += Ops{/*add*/ 3} + kOpsNormalize3 * uint64_t(1 + point + local_viewer_);
+    }
+    solve_planes(ps, inv_w, t.ht[light], hv, ops);
+  }
+}
 
 void SetupKernel::setup_bump(const Vertex v[3], const float inv_w[3], const PlaneSolver<float>& ps,
                              glm::dvec3 pu, glm::dvec3 pv, TriangleSetup& t, Ops& ops) {

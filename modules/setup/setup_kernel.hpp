@@ -38,8 +38,9 @@ constexpr Ops kOpsPerPlane{/*add*/ 6, /*mul*/ 8};
 
 class SetupKernel {
  public:
-  // affine_bump_vectors: vector_interp.bump_vectors = affine (docs/bump-mapping.md).
-  SetupKernel(const core::Scene& scene, bool perspective, bool affine_bump_vectors = false);
+  // affine_bump_vectors: vector_interp.bump_vectors = affine (docs/bump-mapping.md);
+  // interpolate_h: vector_interp.h = interpolated (H's planes for the world-space paths).
+  SetupKernel(const core::Scene& scene, bool perspective, bool affine_bump_vectors = false, bool interpolate_h = false);
 
   // Calls emit(const TriangleSetup&) for every triangle of the scene that covers a
   // pixel, in scene order (objects, then triangles, then clipped pieces).
@@ -79,12 +80,15 @@ class SetupKernel {
                      Ops& ops) const;
   void setup_affine_bump_vectors(const Vertex v[3], const glm::dmat3 to_space[3], const float inv_w[3],
                                  const PlaneSolver<float>& ps, TriangleSetup& t, Ops& ops) const;
+  void setup_world_h(const Vertex v[3], const float inv_w[3], const PlaneSolver<float>& ps, TriangleSetup& t,
+                     Ops& ops) const;
   void setup_unit_bump_vectors(const Vertex v[3], const BumpFrame& f, const glm::dmat3 to_space[3],
                                const float inv_w[3], const PlaneSolver<float>& ps, TriangleSetup& t, Ops& ops) const;
 
   const core::Scene& scene_;
   bool perspective_;
   bool affine_bump_vectors_;
+  bool interpolate_h_;
   glm::dmat4 view_projection_;
   std::vector<int> point_lights_;
   bool local_viewer_;

@@ -8,10 +8,11 @@
 namespace shadetlm::modules {
 
 VectorInterpKernel::VectorInterpKernel(const core::Scene& scene, const std::vector<int>& point_lights,
-                                       bool affine_bump_vectors, core::NumberFormat format)
+                                       bool affine_bump_vectors, core::NumberFormat format, bool interpolate_h)
     : light_count_(int(std::min(scene.lights.size(), size_t(kMaxLights)))),
       world_(needed_in_world(scene)),
       affine_bump_vectors_(affine_bump_vectors),
+      interpolate_h_(interpolate_h),
       local_viewer_(scene.camera.local_viewer),
       numbers_(format) {
   const glm::dvec3 v = -scene.camera.forward();
@@ -58,17 +59,18 @@ void VectorInterpKernel::trace(const SpanPacket& p, int i, double* out) const {
 Ops VectorInterpKernel::ops_per_pixel() const {
   Ops o;
   const Ops interpolate{/*add*/ 3, /*mul*/ 3};  // ×w, then one step of the plane
-  if (local_viewer_) o += interpolate, o += kOpsNormalize3;
+  if (local_viewer_ && !interpolate_h_) o += interpolate, o += kOpsNormalize3;
   for (const auto& s : lights_) {
     if (s.plane >= 0) o += interpolate, o += kOpsNormalize3;
-    o += Ops{/*add*/ 3}, o += kOpsNormalize3;  // H = normalize(L̂ + V̂)
+    if (interpolate_h_) o += interpolate, o += kOpsNormalize3;  // H from its plane
+    else o += Ops{/*add*/ 3}, o += kOpsNormalize3;              // H = normalize(L̂ + V̂)
   }
   return o;
 }
 
 Ops VectorInterpKernel::ops_per_span() const {
-  int vectors = local_viewer_ ? 1 : 0;
-  for (const auto& s : lights_) vectors += s.plane >= 0;
+  int vectors = local_viewer_ && !interpolate_h_ ? 1 : 0;
+  for (const auto& s : lights_) vectors += (s.plane >= 0) + interpolate_h_;
   return Ops{/*add*/ 6, /*mul*/ 6} * uint64_t(vectors);  // three plane seeds each
 }
 
@@ -181,7 +183,9 @@ void VectorInterpKernel::process_in_world(SpanPacket& p) {
     }
   };
   T view[3][kSpanMax];
-  if (local_viewer_) {
+  if (interpolate_h_) {
+    // (no V: H comes from its own plane)
+  } else if (local_viewer_) {
     step_along(t.v, view);
     unit_times_w(view);
   } else {
@@ -206,10 +210,16 @@ void VectorInterpKernel::process_in_world(SpanPacket& p) {
       for (int c = 0; c < 3; ++c)
         for (int i = 0; i < count; ++i) l[c][i] = T(s.direction[c]);
     }
-    for (int i = 0; i < count; ++i) {  // H = normalize(L̂ + V̂)
-      T u[3] = {l[0][i] + view[0][i], l[1][i] + view[1][i], l[2][i] + view[2][i]};
-      normalize3(u);
-      h[0][i] = u[0], h[1][i] = u[1], h[2][i] = u[2];
+    if (interpolate_h_) {  // H at the vertices, interpolated, normalized (Fig. 1)
+      for (int c = 0; c < 3; ++c) h_range_.add_span(t.ht[s.light][c].at(dx, dy), t.ht[s.light][c].ax, p.count, p.w);
+      step_along(t.ht[s.light], h);
+      unit_times_w(h);
+    } else {
+      for (int i = 0; i < count; ++i) {  // H = normalize(L̂ + V̂)
+        T u[3] = {l[0][i] + view[0][i], l[1][i] + view[1][i], l[2][i] + view[2][i]};
+        normalize3(u);
+        h[0][i] = u[0], h[1][i] = u[1], h[2][i] = u[2];
+      }
     }
     if constexpr (!std::is_same_v<T, float>)
       for (int c = 0; c < 3; ++c)

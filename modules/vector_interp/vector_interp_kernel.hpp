@@ -25,7 +25,7 @@ class VectorInterpKernel {
  public:
   // Its datapaths are of `format` (pipeline.vector_interp.format).
   VectorInterpKernel(const core::Scene& scene, const std::vector<int>& point_lights, bool affine_bump_vectors = false,
-                     core::NumberFormat format = {});
+                     core::NumberFormat format = {}, bool interpolate_h = false);
   // World-space L or H vary over the frame (point lights, a local viewer).
   static bool needed_in_world(const core::Scene& scene);
   static bool needed(const core::Scene& scene);
@@ -59,6 +59,7 @@ class VectorInterpKernel {
   int light_count_;  // all the scene's lights
   bool world_;       // needed_in_world()
   bool affine_bump_vectors_;
+  bool interpolate_h_;  // world paths: H from setup's planes (Fig. 1), not from L̂ + V̂
   bool local_viewer_;
   ValueRange l_range_, h_range_;  // interpolated, before normalization
   float view_[3];  // unit V of a viewer at infinity
