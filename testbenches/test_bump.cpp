@@ -367,7 +367,7 @@ TEST_CASE("an 8-bit normal map file is read as (N + 1) / 2 and decoded as 2x - 1
   {
     std::ofstream((dir / "nm.png").string(), std::ios::binary) << core::encode_png(2, 2, rgb);
   }
-  const std::string text = R"({"format": 1, "camera": {"resolution": [8, 8]},
+  const std::string text = R"({"format": 1, "camera": {"position": [0, 0, 3], "target": [0, 0, 0], "resolution": [8, 8]},
     "textures": {"nm": {"type": "image", "file": "nm.png", "colorspace": "srgb"}},
     "materials": {"m": {"path": "bump-tangent", "normal_map": "nm"}},
     "objects": [{"shape": "sphere", "material": "m"}]})";
