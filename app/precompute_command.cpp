@@ -100,7 +100,8 @@ Command add_precompute_command(CLI::App& app) {
             }
             const std::vector<core::Texture> levels = core::mip_levels(base, !opt->keep_mip_lengths);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            if (ends_with_png(opt->output)) {
+            const bool png = ends_with_png(opt->output);
+            if (png) {
               core::OutputSet out;
               out.write(opt->output, normal_map_png(base));
               out.commit();
@@ -116,7 +117,9 @@ Command add_precompute_command(CLI::App& app) {
                                    {"shadetlm:normalmap.renormalized", opt->keep_mip_lengths ? "no" : "yes"}});
             }
             std::cout << "precompute normalmap: " << opt->height << " (" << height.width << "x" << height.height
-                      << "), " << form << " form, " << levels.size() + 1 << " levels, " << seconds << " s\n"
+                      << "), " << form << " form, "
+                      << (png ? std::string("the finest level at 8 bits") : std::to_string(levels.size() + 1) + " levels")
+                      << ", " << seconds << " s\n"
                       << "  wrote " << opt->output << "\n";
             return 0;
           }};

@@ -1,5 +1,6 @@
 // shadetlm render [SCENE] [-o frame.exr] [--preview frame.png] [--heat-map iterations.png] [--stats stats.json]
 //                 [--compare-reference] [--engine systemc|loop] [--set key=value ...]
+#include <cctype>
 #include <chrono>
 #include <algorithm>
 #include <cstdio>

@@ -95,7 +95,10 @@ LayerMetrics layer_metrics(const Frame& a, const Frame& b, const std::string& la
       m.max_y = int(i / size_t(a.width));
     }
   }
-  const double mse = m.pixels == 0 ? 0 : sum_sq / (double(m.pixels) * double(chans.size()));
+  // No pixel covered in either frame: no figure (NaN), rather than a perfect one.
+  const double mse = m.pixels == 0 ? std::numeric_limits<double>::quiet_NaN()
+                                   : sum_sq / (double(m.pixels) * double(chans.size()));
+  if (m.pixels == 0) m.max_abs = mse;
   const double frame_mse = a.pixel_count() == 0 ? 0 : frame_sum_sq / (double(a.pixel_count()) * double(chans.size()));
   m.rmse = std::sqrt(mse);
   m.psnr = psnr_of(m.peak, mse);
@@ -124,7 +127,7 @@ CompareResult compare_frames(const Frame& a, const Frame& b, const CompareOption
       const bool in_a = a.find(n) != nullptr, in_b = b.find(n) != nullptr;
       if (in_a && in_b) {
         chans.push_back(n);
-      } else if ((in_a || in_b) && (opt.layers.empty() || asked)) {
+      } else if ((in_a || in_b) && ((opt.layers.empty() && layer != "A") || asked)) {  // A alone: when asked
         r.pass = false;
         r.problem += (r.problem.empty() ? "" : "; ") + std::string("channel ") + n + " is only in " + (in_a ? "A" : "B");
       }

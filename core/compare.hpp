@@ -38,6 +38,7 @@ struct LayerMetrics {
   int max_x = -1, max_y = -1;  // the pixel of max_abs (-1 when no covered pixel differs)
   double rmse = 0;             // over every measured pixel's every channel
   double psnr = 0;             // 10·log10(peak² / MSE); +inf when MSE is 0
+                               // (max, RMSE and PSNR are NaN when no pixel is covered)
   double peak = 1;             // 1 for RGB, A and N; the largest finite |Z| of B for Z
   // Over every pixel of the frame:
   double frame_max = 0, frame_rmse = 0, frame_psnr = 0;

@@ -8,11 +8,13 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/setup.sh"
 "$root/scripts/build.sh" >/dev/null
-doc=0
-[[ ${1:-} == --doc ]] && { doc=1; shift; }
+doc=0 args=()
+for arg in "$@"; do
+  if [[ $arg == --doc ]]; then doc=1; else args+=("$arg"); fi
+done
 out=$(mktemp)
 trap 'rm -f "$out"' EXIT
-python3 "$root/scripts/bump-report.py" "$root/build/app/shadetlm" "$@" | tee "$out"
+python3 "$root/scripts/bump-report.py" "$root/build/app/shadetlm" ${args[@]+"${args[@]}"} | tee "$out"
 if ((doc)); then
   python3 "$root/scripts/doc-tables.py" "$out" "$root/docs/bump-mapping.md" bump 10
 fi

@@ -8,15 +8,22 @@
 #   into their page, between its markers)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-doc=0 bump=()
-[[ ${1:-} == --doc ]] && { doc=1; shift; }
-[[ ${1:-} == --bump ]] && { bump=(--bump); shift; }
-bin=${1:-$root/build/app/shadetlm}
+doc=0 bump=0 bin=$root/build/app/shadetlm
+for arg in "$@"; do
+  case $arg in
+    --doc) doc=1 ;;
+    --bump) bump=1 ;;
+    -*) echo "format-report.sh: unknown option $arg (--doc, --bump)" >&2; exit 2 ;;
+    *) bin=$arg ;;
+  esac
+done
 [[ -x $bin ]] || { "$root/scripts/build.sh" >/dev/null; bin=$root/build/app/shadetlm; }
 out=$(mktemp)
 trap 'rm -f "$out"' EXIT
-python3 "$root/scripts/format-report.py" "$bin" "$root" "${bump[@]}" | tee "$out"
-if ((doc)) && ((${#bump[@]})); then
+suite=()
+((bump)) && suite=(--bump)
+python3 "$root/scripts/format-report.py" "$bin" "$root" ${suite[@]+"${suite[@]}"} | tee "$out"
+if ((doc && bump)); then
   python3 "$root/scripts/doc-tables.py" "$out" "$root/docs/bump-mapping.md" bump-formats 2
 elif ((doc)); then
   python3 "$root/scripts/doc-tables.py" "$out" "$root/docs/numerical-stability.md" formats 2

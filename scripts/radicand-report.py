@@ -80,13 +80,14 @@ for label, scene, sets in SCENES:
 # the break-even: a packet of n pixels costs direct·n against a·n + s.
 (p1, s1, d1, f1), (p2, s2, _, f2) = samples[0], max(samples, key=lambda x: x[0] / x[1])
 det = p1 * s2 - p2 * s1
+if det == 0:
+    sys.exit("radicand-report: the scenes' spans are all alike; no per-seed cost can be told from the per-pixel one")
 costs = {op: (d1[op] / p1, (f1[op] * s2 - f2[op] * s1) / det, (p1 * f2[op] - p2 * f1[op]) / det) for op in ("mul", "add")}
-
 print()
 print("| operations counted | direct, per pixel | forward difference, per pixel | a seed | forward difference wins from |")
 print("|---|---:|---:|---:|---|")
 for name, ops in (("multiplications", ("mul",)), ("multiplications and additions", ("mul", "add"))):
     direct, fd, seed = (sum(costs[o][k] for o in ops) for k in range(3))
-    n = next(n for n in range(1, 1000) if fd * n + seed < direct * n)
-    print("| %s | %g | %g | %g | %d pixels a seed |" % (name, direct, fd, seed, n))
+    n = next((n for n in range(1, 100000) if fd * n + seed < direct * n), None)
+    print("| %s | %g | %g | %g | %s |" % (name, direct, fd, seed, "%d pixels a seed" % n if n else "never"))
 shutil.rmtree(TMP, ignore_errors=True)

@@ -76,8 +76,9 @@ for scene in scenes:
         # Written so that NaN fails.
         if "rgb_min_psnr" in accuracy and not figure(err["psnr"]) >= accuracy["rgb_min_psnr"]:
             row["accuracy_problems"].append("accuracy: PSNR %.1f dB below %.1f" % (figure(err["psnr"]), accuracy["rgb_min_psnr"]))
-        if "rgb_max" in accuracy and not figure(err["max"]) <= accuracy["rgb_max"]:
-            row["accuracy_problems"].append("accuracy: max error %.3g over %.3g" % (figure(err["max"]), accuracy["rgb_max"]))
+        # rgb_max holds for every pixel of the frame (as testbenches/test_golden.cpp checks).
+        if "rgb_max" in accuracy and not figure(err["frame"]["max"]) <= accuracy["rgb_max"]:
+            row["accuracy_problems"].append("accuracy: max error %.3g over %.3g" % (figure(err["frame"]["max"]), accuracy["rgb_max"]))
         # Regression per layer against the accepted frame.
         frame_ok = os.path.exists(accepted)
         if not frame_ok:

@@ -182,3 +182,22 @@ TEST_CASE("without A a finite depth is coverage; without either every pixel coun
   CHECK(layer(r, "RGB").pixels == 4);
   CHECK(layer(r, "RGB").rmse == Approx(std::sqrt(0.5 / 12)));
 }
+
+TEST_CASE("a frame without A compares with one that has it on the layers both have; empty coverage has no figure", "[compare]") {
+  core::Frame a(3, 1), b(3, 1);
+  for (core::Frame* f : {&a, &b})
+    for (const char* n : {"R", "G", "B"}) f->add(n, 0.5f);
+  a.add("A", 1.0f);  // a pipeline frame against an RGB-only reference
+  CHECK(core::compare_frames(a, b, {}).pass);
+  core::CompareOptions alpha;
+  alpha.layers = {"A"};
+  CHECK(!core::compare_frames(a, b, alpha).pass);  // asked for: required in both
+  // Nothing covered in either frame: the figures are NaN, so no PSNR gate passes on them.
+  a.at("A").assign(3, 0.0f);
+  b.add("A", 0.0f);
+  const auto r = core::compare_frames(a, b, {});
+  CHECK(r.pass);  // the verdict: no pixel differs
+  CHECK(layer(r, "RGB").pixels == 0);
+  CHECK(std::isnan(layer(r, "RGB").psnr));
+  CHECK(!(layer(r, "RGB").psnr >= 0));
+}

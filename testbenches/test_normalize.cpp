@@ -2,6 +2,7 @@
 // difference radicand against |N|², the fast inverse square root's error per Newton
 // step, unit-length output for every mode, and the operation counts per pixel —
 // counted by running the kernel's own code on Counted<float>.
+#include <cmath>
 #include <random>
 
 #include "shadetlm/modules/normalize/normalize_kernel.hpp"
@@ -181,4 +182,33 @@ TEST_CASE("normalize: the SystemC block returns unit normals in every mode", "[n
   INFO("|len − 1| exact " << worst[0] << ", fd " << worst[1] << ", rsqrt0 " << worst[2] << ", rsqrt1 " << worst[3]
                           << ", rsqrt2 " << worst[4]);
   CHECK(worst[2] > 0.01);  // rsqrt0 really is the crude one
+}
+
+// k(k−1)/2 for a 1000-pixel gap is 499 500: past float16's range and fixed:3.20's. The
+// gap counter's integers multiply the datapath's values; they are not values of it, so
+// the jump is three roundings of the format away from R_k and δ_k of the seed it starts
+// from. (Stepping through the gap instead is not a reference here: float16's adders
+// lose δ's steps altogether, R stays at 1.)
+template <class T>
+void check_jump(const char* format, double unit) {
+  INFO(format);
+  modules::NumberContext context(core::NumberFormat::parse(format));
+  modules::NumberScope scope(context);
+  const T n0[3] = {T(0.2f), T(0.6f), T(0.7f)}, dh[3] = {T(0.0004f), T(-0.0003f), T(0.0001f)};
+  const T c = T(2.0f * (0.0004f * 0.0004f + 0.0003f * 0.0003f + 0.0001f * 0.0001f));
+  const auto seed = modules::RadicandState<T>::seed(n0, dh, c);
+  auto jumped = seed;
+  const int k = 1000;
+  jumped.jump(k, c);
+  const double r = double(seed.r) + k * double(seed.delta) + 0.5 * k * (k - 1) * double(c);
+  const double delta = double(seed.delta) + k * double(c);
+  INFO("R_k " << r << ", jumped " << double(jumped.r) << "; delta_k " << delta << ", jumped " << double(jumped.delta));
+  CHECK(std::abs(double(jumped.r) - r) <= 3 * unit);
+  CHECK(std::abs(double(jumped.delta) - delta) <= 3 * unit);
+  CHECK(context.events.overflows == 0);
+}
+
+TEST_CASE("normalize seed=line: a jump over a long gap is three roundings from the exact step, in float16 and fixed point", "[normalize]") {
+  check_jump<modules::Half>("float16", std::ldexp(1.0, -10));     // a unit in R's last place, R in [1, 2)
+  check_jump<modules::Fixed>("fixed:3.20", std::ldexp(1.0, -20));
 }

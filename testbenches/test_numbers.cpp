@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <set>
 
 #include "shadetlm/core/compare.hpp"
 #include "shadetlm/modules/common/number.hpp"
@@ -243,4 +244,55 @@ TEST_CASE("float16 lighting under a light past its range: counted, and no infini
   for (const auto& c : r.frame.channels)
     if (c.name != "Z")
       for (float v : c.values) REQUIRE(std::isfinite(v));
+}
+
+// Each kernel declares its operation counts (ops in the stats); here the float32
+// datapaths run on Counted<float> instead, which counts what the code does, and the two
+// are held together per block. Checked: the blocks whose datapath is written over the
+// number type. Not checked (their float32 code is not, or not all): bump_fetch and
+// texture_fetch (the texture unit's filter), texel_project (its per-triangle setup in
+// double), parallax (the exact cell test stays float32, and its tallies are by hand),
+// and setup, raster, framebuffer (no number format).
+TEST_CASE("every formatted block's declared operation counts are what its number type counts", "[numbers][ops]") {
+  struct Case {
+    const char* scene;
+    std::vector<std::string> sets;
+  };
+  const std::vector<Case> cases = {
+      {"golden/sphere/scene.json", {}},
+      {"golden/point-light/scene.json", {}},
+      {"golden/point-light/scene.json", {"pipeline.normalize.mode=forward-difference", "pipeline.normalize.seed=line"}},
+      {"golden/point-light/scene.json", {"pipeline.normalize.mode=rsqrt1", "pipeline.vector_interp.h=interpolated"}},
+      {"golden/demo/scene.json", {}},
+      {"golden/bump-plane/scene.json", {}},
+      {"golden/bump-sphere/scene.json", {}},
+      {"golden/bump-object/scene.json", {}},
+      {"golden/texture-object/scene.json", {}},
+      {"golden/parallax-steps/scene.json", {}},
+  };
+  modules::count_float32_operations = true;
+  for (const auto& c : cases) {
+    const core::Scene scene = core::load_scene(test::source_path(c.scene), c.sets);
+    const modules::RenderResult r = modules::render_loop(scene);
+    for (const auto& b : r.blocks) {
+      static const std::set<std::string> checked = {"normal_interp", "normalize", "vector_interp", "bump_perturb",
+                                                    "lighting"};
+      if (!checked.count(b.name)) continue;
+      REQUIRE(b.numbers);
+      const modules::Ops& d = b.stats.ops;
+      const modules::Ops& k = b.numbers->events.counted;
+      INFO("DIFF " << c.scene << " [" << (c.sets.empty() ? "" : c.sets.back()) << "] " << b.name << " pixels "
+                   << b.stats.pixels << " packets " << b.stats.packets << " declared-counted add "
+                   << int64_t(d.add - k.add) << " mul " << int64_t(d.mul - k.mul) << " div " << int64_t(d.div - k.div)
+                   << " sqrt " << int64_t(d.sqrt - k.sqrt) << " rsqrt " << int64_t(d.rsqrt - k.rsqrt) << " lut "
+                   << int64_t(d.lut - k.lut));
+      CHECK(b.stats.ops.add == b.numbers->events.counted.add);
+      CHECK(b.stats.ops.mul == b.numbers->events.counted.mul);
+      CHECK(b.stats.ops.div == b.numbers->events.counted.div);
+      CHECK(b.stats.ops.sqrt == b.numbers->events.counted.sqrt);
+      CHECK(b.stats.ops.rsqrt == b.numbers->events.counted.rsqrt);
+      CHECK(b.stats.ops.lut == b.numbers->events.counted.lut);
+    }
+  }
+  modules::count_float32_operations = false;
 }

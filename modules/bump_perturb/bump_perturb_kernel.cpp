@@ -18,7 +18,7 @@ void BumpPerturbKernel::perturb(SpanPacket& p) {
   for (int c = 0; c < 3; ++c) {
     n_x_pv_range_.add_span(t.n_x_pv[c].at(dx, dy), t.n_x_pv[c].ax, p.count, p.w);
     pu_x_n_range_.add_span(t.pu_x_n[c].at(dx, dy), t.pu_x_n[c].ax, p.count, p.w);
-    x_w[c] = T(t.n_x_pv[c].at(dx, dy)), y_w[c] = T(t.pu_x_n[c].at(dx, dy));
+    x_w[c] = plane_seed<T>(t.n_x_pv[c], dx, dy), y_w[c] = plane_seed<T>(t.pu_x_n[c], dx, dy);
     x_step[c] = T(t.n_x_pv[c].ax), y_step[c] = T(t.pu_x_n[c].ax);
   }
   const T c_scale = T(t.bump_c);

@@ -33,7 +33,14 @@ namespace shadetlm::modules {
 struct NumberEvents {
   uint64_t overflows = 0;  // saturated (fixed) or infinite from finite operands (float16)
   uint64_t invalid = 0;    // NaN produced (float16); 0/0, x/0, sqrt(−x) or NaN converted in (fixed)
+  Ops counted;             // with count_float32_operations: what the kernel's number type did
 };
+
+// Testbenches only: float32 datapaths run on Counted<float> instead of float (the same
+// arithmetic, but the specular power by std::pow and no vector lanes), each block's
+// operations tallied in its context (NumberEvents::counted), so that a test can hold
+// them against the counts the kernels declare (testbenches/test_numbers.cpp).
+inline bool count_float32_operations = false;
 
 struct NumberContext {
   core::NumberFormat format;
@@ -221,6 +228,8 @@ inline Fixed pow_op(Fixed x, float e) { return std::pow(double(x), double(e)); }
 
 // floor(x): in fixed point, the fraction bits cleared (wiring).
 template <class T> T floor_op(T x) { return std::floor(x); }
+// (the integer part of a number: wiring, not an operation)
+template <class T> Counted<T> floor_op(Counted<T> x) { return std::floor(x.v); }
 inline Half floor_op(Half x) { return Half::raw(std::floor(double(x))); }
 inline Fixed floor_op(Fixed x) {
   const int f = number_context->frac_bits;
@@ -231,7 +240,15 @@ inline Fixed floor_op(Fixed x) {
 template <class Body>
 void with_number_type(NumberContext& context, Body&& body) {
   switch (context.format.kind) {
-    case core::NumberFormat::Kind::Float32: body(float{}); return;
+    case core::NumberFormat::Kind::Float32:
+      if (count_float32_operations) {
+        Counted<float>::ops = {};
+        body(Counted<float>{});
+        context.events.counted += Counted<float>::ops;
+        return;
+      }
+      body(float{});
+      return;
     case core::NumberFormat::Kind::Float16: {
       NumberScope scope(context);
       body(Half{});

@@ -4,6 +4,7 @@
 // testbench can check a kernel's declared counts against what its code really does.
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include <nlohmann/json.hpp>
 
@@ -57,7 +58,8 @@ struct Counted {
 
   Counted() = default;
   Counted(T x) : v(x) {}  // NOLINT: constants mix freely, as with T
-  explicit operator T() const { return v; }
+  template <class U, class = std::enable_if_t<std::is_arithmetic_v<U>>>
+  explicit operator U() const { return U(v); }
 
   friend Counted operator+(Counted a, Counted b) { ++ops.add; return a.v + b.v; }
   friend Counted operator-(Counted a, Counted b) { ++ops.add; return a.v - b.v; }
@@ -71,6 +73,9 @@ struct Counted {
   friend bool operator>(Counted a, Counted b) { return a.v > b.v; }
   friend bool operator<=(Counted a, Counted b) { return a.v <= b.v; }
   friend bool operator>=(Counted a, Counted b) { return a.v >= b.v; }
+  friend bool operator==(Counted a, Counted b) { return a.v == b.v; }
+  friend bool operator!=(Counted a, Counted b) { return a.v != b.v; }
+  Counted& operator/=(Counted b) { return *this = *this / b; }
 };
 
 // The elementary functions of the datapaths, for plain floating types and Counted.
@@ -79,14 +84,24 @@ template <class T> T rsqrt_op(T x) { return T(1) / std::sqrt(x); }
 template <class T> T pow_op(T x, T e) { return std::pow(x, e); }
 template <class T> T max_op(T a, T b) { return a > b ? a : b; }
 template <class T> Counted<T> sqrt_op(Counted<T> x) { ++Counted<T>::ops.sqrt; return std::sqrt(x.v); }
-// (computed as T's 1 / √x: a square root and a division, as counted; a format with a
-// correctly rounded rsqrt unit — float16, fixed point — has its own rsqrt_op)
+// (Counted<float> computes float32's 1 / √x: a square root and a division, as counted;
+// float16 and fixed point have a correctly rounded rsqrt_op of their own, not counted here)
 template <class T> Counted<T> rsqrt_op(Counted<T> x) { ++Counted<T>::ops.sqrt, ++Counted<T>::ops.div; return T(1) / std::sqrt(x.v); }
 // The specular power is one table look-up in hardware (it is powf here).
 template <class T> Counted<T> pow_op(Counted<T> x, Counted<T> e) { ++Counted<T>::ops.lut; return std::pow(x.v, e.v); }
+template <class T> Counted<T> pow_op(Counted<T> x, float e) { ++Counted<T>::ops.lut; return std::pow(x.v, T(e)); }
 
 // Adds operations done outside T (e.g. on the bits of a float) to T's tally.
 template <class T> void tally_counted(const Ops& o) { Counted<T>::ops += o; }
+
+// Whether T is a Counted type.
+template <class T> struct is_counted : std::false_type {};
+template <class U> struct is_counted<Counted<U>> : std::true_type {};
+// Operations the hardware does whose result the model need not compute (a select
+// discards it): tallied on a Counted type, nothing on the others.
+template <class T> void count_discarded(const Ops& o) {
+  if constexpr (is_counted<T>::value) T::ops += o;
+}
 
 // The value of a number of any of these types, as a plain T.
 template <class T> T value(T x) { return x; }

@@ -31,6 +31,15 @@ struct Plane {
   float at(int dx, int dy) const { return a0 + ax * float(dx) + ay * float(dy); }
 };
 
+// A plane's value at a packet's first pixel as a datapath of type T receives it: the
+// seed (2 multiplications, 2 additions) in float32, rounded to T; the seed's operations
+// tallied when T counts them.
+template <class T>
+T plane_seed(const Plane& p, int dx, int dy) {
+  count_discarded<T>(Ops{/*add*/ 2, /*mul*/ 2});
+  return T(p.at(dx, dy));
+}
+
 // The material of a triangle made without a scene (testbenches): plain Phong.
 inline const core::Material kDefaultMaterial{};
 

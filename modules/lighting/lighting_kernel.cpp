@@ -125,8 +125,11 @@ void LightingKernel::shade(SpanPacket& p) {
         n_dot_h[i] = lit ? power : zero;
       }
     } else {
-      for (int i = 0; i < count; ++i)
-        n_dot_h[i] = n_dot_l[i] > zero && n_dot_h[i] > zero ? pow_op(n_dot_h[i], shininess) : zero;
+      for (int i = 0; i < count; ++i) {
+        const bool lit = n_dot_l[i] > zero && n_dot_h[i] > zero;
+        if (!lit) count_discarded<T>(Ops{0, 0, 0, 0, 0, /*lut*/ 1});  // looked up, then discarded
+        n_dot_h[i] = lit ? pow_op(n_dot_h[i], shininess) : zero;
+      }
     }
     if (deferred) {
       for (int c = 0; c < 3; ++c)

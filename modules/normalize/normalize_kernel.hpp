@@ -85,6 +85,17 @@ T radicand(const T n[3]) {
   return n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
 }
 
+// An integer (a counter's) times a value of the datapath, rounded once to T.
+template <class T>
+T times_integer(int64_t k, T x) {
+  return T(double(k) * double(x));
+}
+template <class T>
+Counted<T> times_integer(int64_t k, Counted<T> x) {
+  tally_counted<T>(Ops{0, /*mul*/ 1});
+  return T(double(k) * double(x.v));
+}
+
 // |N_n|² along a span N_n = N_0 + n·ΔN_H by second-order differences (formulas
 // (13)–(16)): R_n and δ_n at the next pixel.
 template <class T>
@@ -100,12 +111,14 @@ struct RadicandState {
     delta = delta + c;
     return now;
   }
-  // k > 0 pixels at once, over hidden pixels: 3 multiplications, 3 additions
-  // (k(k−1)/2 is an integer of the gap counter, exact in any format that holds it).
+  // k > 0 pixels at once, over hidden pixels: 3 multiplications, 3 additions. k and
+  // k(k−1)/2 come from the gap counter, integers: each product has one integer operand
+  // and is rounded once to the format (times_integer), as a multiplier taking the
+  // counter's bits would.
   void jump(int k, T c) {
-    const T kt = T(float(k)), steps = T(float(int64_t(k) * (k - 1) / 2));
-    r = r + kt * delta + steps * c;
-    delta = delta + kt * c;
+    const int64_t steps = int64_t(k) * (k - 1) / 2;
+    r = r + times_integer(k, delta) + times_integer(steps, c);
+    delta = delta + times_integer(k, c);
   }
 };
 
@@ -222,7 +235,7 @@ class NormalizeKernel {
     bool open = false;
     uint32_t triangle = 0;
     int y = 0, next_x = 0;
-    double r = 0, delta = 0;  // (holds any format's value exactly)
+    double r = 0, delta = 0;  // (holds float16's, float32's and fixed:I.F's values exactly: I + F ≤ 52)
   };
 
   NormalizeMode mode_;

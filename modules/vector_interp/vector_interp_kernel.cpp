@@ -111,7 +111,7 @@ void VectorInterpKernel::process_in_space(SpanPacket& p) {
   if (affine_bump_vectors_) {
     T view[kSpanMax][3];
     T v_w[3], v_step[3];
-    for (int c = 0; c < 3; ++c) v_w[c] = T(t.vt[c].at(dx, dy)), v_step[c] = T(t.vt[c].ax);
+    for (int c = 0; c < 3; ++c) v_w[c] = plane_seed<T>(t.vt[c], dx, dy), v_step[c] = T(t.vt[c].ax);
     for (int i = 0; i < p.count; ++i) {
       const T w = T(p.w[i]);
       for (int c = 0; c < 3; ++c) view[i][c] = v_w[c] * w, v_w[c] += v_step[c];
@@ -120,7 +120,7 @@ void VectorInterpKernel::process_in_space(SpanPacket& p) {
     for (int k = 0; k < light_count_; ++k) {
       T l_w[3], l_step[3];
       for (int c = 0; c < 3; ++c) {
-        l_w[c] = T(t.lt[k][c].at(dx, dy)), l_step[c] = T(t.lt[k][c].ax);
+        l_w[c] = plane_seed<T>(t.lt[k][c], dx, dy), l_step[c] = T(t.lt[k][c].ax);
         l_range_.add_span(t.lt[k][c].at(dx, dy), t.lt[k][c].ax, p.count, p.w);
       }
       for (int i = 0; i < p.count; ++i) {
@@ -138,7 +138,7 @@ void VectorInterpKernel::process_in_space(SpanPacket& p) {
   for (int k = 0; k < light_count_; ++k) {
     T l_w[3], h_w[3], l_step[3], h_step[3];
     for (int c = 0; c < 3; ++c) {
-      l_w[c] = T(t.lt[k][c].at(dx, dy)), h_w[c] = T(t.ht[k][c].at(dx, dy));
+      l_w[c] = plane_seed<T>(t.lt[k][c], dx, dy), h_w[c] = plane_seed<T>(t.ht[k][c], dx, dy);
       l_step[c] = T(t.lt[k][c].ax), h_step[c] = T(t.ht[k][c].ax);
       l_range_.add_span(t.lt[k][c].at(dx, dy), t.lt[k][c].ax, p.count, p.w);
       h_range_.add_span(t.ht[k][c].at(dx, dy), t.ht[k][c].ax, p.count, p.w);
@@ -168,7 +168,7 @@ void VectorInterpKernel::process_in_world(SpanPacket& p) {
   // the constant increment: a chain of additions, in a loop of its own …
   auto step_along = [&](const Plane plane[3], T out[3][kSpanMax]) {
     for (int c = 0; c < 3; ++c) {
-      T a = T(plane[c].at(dx, dy));
+      T a = plane_seed<T>(plane[c], dx, dy);
       const T step = T(plane[c].ax);
       for (int i = 0; i < count; ++i) out[c][i] = a, a += step;
     }
