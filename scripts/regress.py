@@ -179,7 +179,8 @@ for r in rows:
             html.escape(truth), a["max"], a["psnr"], a["pixels"],
             html.escape(", ".join("%s %s" % (k, v) for k, v in a["gate"].items() if k != "why"))))
     if "cycles" in r:
-        figs.append("cycles: %s then, %s now" % (r["cycles"]["then"], r["cycles"]["now"]))
+        then = r["cycles"]["then"]
+        figs.append("cycles: %s accepted, %s now" % ("none" if then is None else then, r["cycles"]["now"]))
     figs += ['<span class="fail">%s</span>' % html.escape(p) for p in r["accuracy_problems"] + r["problems"]]
     out.append("<tr><td>%s<br>%s<br>%s<br><small>%s</small></td>%s%s%s%s<td>%s</td></tr>" % (
         html.escape(r["scene"]), html.escape(r["config"]), status, html.escape(" ".join(r["sets"])),
