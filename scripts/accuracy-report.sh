@@ -53,7 +53,10 @@ report() {
     printf '| %s | %s | %.2e |\n' "${name//_/ }" "${res//,/×}" "$err"
   done
 }
-report | tee "$tmp/report.txt"
 if ((doc)); then
+  report > "$tmp/report.txt"
   python3 "$root/scripts/doc-tables.py" "$tmp/report.txt" "$root/docs/pipeline.md" accuracy 2
+  cat "$tmp/report.txt"
+else
+  report
 fi

@@ -12,9 +12,5 @@ doc=0 args=()
 for arg in "$@"; do
   if [[ $arg == --doc ]]; then doc=1; else args+=("$arg"); fi
 done
-out=$(mktemp)
-trap 'rm -f "$out"' EXIT
-python3 "$root/scripts/bump-report.py" "$root/build/app/shadetlm" ${args[@]+"${args[@]}"} | tee "$out"
-if ((doc)); then
-  python3 "$root/scripts/doc-tables.py" "$out" "$root/docs/bump-mapping.md" bump 10
-fi
+report=(python3 "$root/scripts/bump-report.py" "$root/build/app/shadetlm" ${args[@]+"${args[@]}"})
+if ((doc)); then python3 "$root/scripts/doc-tables.py" --run "$root/docs/bump-mapping.md" bump 10 -- "${report[@]}"; else "${report[@]}"; fi

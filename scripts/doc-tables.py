@@ -2,12 +2,28 @@
 """Puts the Markdown tables a report script printed into its doc, table N between
 <!-- NAME:N --> and <!-- /NAME:N --> (scripts/architect.sh, scripts/memory.sh --doc).
 Leaves the doc as it was, and exits 1 naming why, if the count or a marker is wrong.
-Usage: scripts/doc-tables.py REPORT.txt DOC.md NAME COUNT"""
+With --run it runs the report itself, passes its output on as it comes, and touches the
+doc only if the report exits 0 (else it exits with the report's status).
+Usage: scripts/doc-tables.py REPORT.txt DOC.md NAME COUNT
+       scripts/doc-tables.py --run DOC.md NAME COUNT -- COMMAND [ARG ...]"""
 import re
+import subprocess
 import sys
 
-report, doc, name, count = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
-tables = [t.strip() for t in re.findall(r"((?:^\|.*\n)+)", open(report).read(), re.M)]
+if sys.argv[1] == "--run":
+    doc, name, count, command = sys.argv[2], sys.argv[3], int(sys.argv[4]), sys.argv[6:]
+    report = subprocess.Popen(command, stdout=subprocess.PIPE, text=True)
+    text = ""
+    for line in report.stdout:
+        sys.stdout.write(line)
+        sys.stdout.flush()
+        text += line
+    if report.wait() != 0:
+        sys.exit(report.returncode)
+else:
+    doc, name, count = sys.argv[2], sys.argv[3], int(sys.argv[4])
+    text = open(sys.argv[1]).read()
+tables = [t.strip() for t in re.findall(r"((?:^\|.*\n)+)", text, re.M)]
 page = open(doc).read()
 if len(tables) != count:
     sys.exit(f"{name}: {len(tables)} tables printed, {count} expected; {doc} left as it was")

@@ -18,13 +18,7 @@ for arg in "$@"; do
   esac
 done
 [[ -x $bin ]] || { "$root/scripts/build.sh" >/dev/null; bin=$root/build/app/shadetlm; }
-out=$(mktemp)
-trap 'rm -f "$out"' EXIT
-suite=()
-((bump)) && suite=(--bump)
-python3 "$root/scripts/format-report.py" "$bin" "$root" ${suite[@]+"${suite[@]}"} | tee "$out"
-if ((doc && bump)); then
-  python3 "$root/scripts/doc-tables.py" "$out" "$root/docs/bump-mapping.md" bump-formats 2
-elif ((doc)); then
-  python3 "$root/scripts/doc-tables.py" "$out" "$root/docs/numerical-stability.md" formats 2
-fi
+report=(python3 "$root/scripts/format-report.py" "$bin" "$root")
+target=("$root/docs/numerical-stability.md" formats 2)
+((bump)) && report+=(--bump) && target=("$root/docs/bump-mapping.md" bump-formats 2)
+if ((doc)); then python3 "$root/scripts/doc-tables.py" --run "${target[@]}" -- "${report[@]}"; else "${report[@]}"; fi

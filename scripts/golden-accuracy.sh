@@ -11,7 +11,5 @@ doc=0
 "$root/scripts/build.sh" >/dev/null
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-python3 "$root/scripts/golden-accuracy.py" "$root/build/app/shadetlm" "$root" "$work" | tee "$work/report.txt"
-if ((doc)); then
-  python3 "$root/scripts/doc-tables.py" "$work/report.txt" "$root/docs/regression.md" golden-accuracy 2
-fi
+report=(python3 "$root/scripts/golden-accuracy.py" "$root/build/app/shadetlm" "$root" "$work")
+if ((doc)); then python3 "$root/scripts/doc-tables.py" --run "$root/docs/regression.md" golden-accuracy 2 -- "${report[@]}"; else "${report[@]}"; fi

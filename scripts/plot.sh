@@ -9,9 +9,5 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 doc=0
 [[ ${1:-} == --doc ]] && { doc=1; shift; }
 "$root/scripts/setup.sh" gnuplot-nox
-out=$(mktemp)
-trap 'rm -f "$out"' EXIT
-python3 "$root/scripts/plot.py" "${1:-$root/out/sweep/sweep.csv}" "$root/out/plots" | tee "$out"
-if ((doc)); then
-  python3 "$root/scripts/doc-tables.py" "$out" "$root/docs/benchmarks.md" pareto 1
-fi
+report=(python3 "$root/scripts/plot.py" "${1:-$root/out/sweep/sweep.csv}" "$root/out/plots")
+if ((doc)); then python3 "$root/scripts/doc-tables.py" --run "$root/docs/benchmarks.md" pareto 1 -- "${report[@]}"; else "${report[@]}"; fi

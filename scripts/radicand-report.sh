@@ -10,9 +10,5 @@ doc=0
 [[ ${1:-} == --doc ]] && doc=1
 "$root/scripts/setup.sh"
 "$root/scripts/build.sh" >/dev/null
-out=$(mktemp)
-trap 'rm -f "$out"' EXIT
-python3 "$root/scripts/radicand-report.py" "$root/build/app/shadetlm" "$root" | tee "$out"
-if ((doc)); then
-  python3 "$root/scripts/doc-tables.py" "$out" "$root/docs/pipeline.md" radicand 2
-fi
+report=(python3 "$root/scripts/radicand-report.py" "$root/build/app/shadetlm" "$root")
+if ((doc)); then python3 "$root/scripts/doc-tables.py" --run "$root/docs/pipeline.md" radicand 2 -- "${report[@]}"; else "${report[@]}"; fi

@@ -11,9 +11,5 @@ doc=0
 "$root/scripts/setup.sh" gnuplot-nox
 bin=${1:-$root/build/app/shadetlm}
 [[ -x $bin ]] || { "$root/scripts/build.sh" >/dev/null; bin=$root/build/app/shadetlm; }
-out=$(mktemp)
-trap 'rm -f "$out"' EXIT
-python3 "$root/scripts/stability-report.py" "$bin" "$root" "$root/docs/images" | tee "$out"
-if ((doc)); then
-  python3 "$root/scripts/doc-tables.py" "$out" "$root/docs/numerical-stability.md" stability 4
-fi
+report=(python3 "$root/scripts/stability-report.py" "$bin" "$root" "$root/docs/images")
+if ((doc)); then python3 "$root/scripts/doc-tables.py" --run "$root/docs/numerical-stability.md" stability 4 -- "${report[@]}"; else "${report[@]}"; fi

@@ -16,10 +16,5 @@ for arg in "$@"; do
   if [[ $arg == --doc ]]; then doc=1; else args+=("$arg"); fi
 done
 photo=$("$root/scripts/skimage-asset.sh" astronaut.png)
-out=$(mktemp)
-trap 'rm -f "$out"' EXIT
-python3 "$root/scripts/texture-report.py" "$root/build/app/shadetlm" "$photo" ${args[@]+"${args[@]}"} | tee "$out"
-if ((doc)); then
-  # (five tables: without the photograph there are four, and the page is left as it was)
-  python3 "$root/scripts/doc-tables.py" "$out" "$root/docs/object-space-texturing.md" texture 5
-fi
+report=(python3 "$root/scripts/texture-report.py" "$root/build/app/shadetlm" "$photo" ${args[@]+"${args[@]}"})
+if ((doc)); then python3 "$root/scripts/doc-tables.py" --run "$root/docs/object-space-texturing.md" texture 5 -- "${report[@]}"; else "${report[@]}"; fi
