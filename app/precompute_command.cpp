@@ -40,12 +40,11 @@ bool ends_with_png(std::string path) {
   return path.size() >= 4 && path.compare(path.size() - 4, 4, ".png") == 0;
 }
 
-// The finest level as an 8-bit PNG, as normal maps are stored: round((N + 1) / 2 · 255).
+// The finest level as an 8-bit PNG, as normal maps are stored: (N + 1) / 2 (core::encode_unorm).
 std::string normal_map_png(const core::Texture& map) {
   std::vector<unsigned char> rgb(size_t(map.width) * size_t(map.height) * 3);
   for (size_t i = 0; i < map.texels.size(); ++i)
-    for (int k = 0; k < 3; ++k)
-      rgb[i * 3 + size_t(k)] = static_cast<unsigned char>(std::lround(std::clamp((map.texels[i][k] + 1.0f) * 0.5f, 0.0f, 1.0f) * 255.0f));
+    for (int k = 0; k < 3; ++k) rgb[i * 3 + size_t(k)] = static_cast<unsigned char>(core::encode_unorm(map.texels[i][k], 8));
   return core::encode_png(map.width, map.height, rgb);
 }
 }  // namespace

@@ -421,7 +421,7 @@ Material read_material(JsonReader r, const std::string& name, TextureRefs& textu
 std::map<std::string, int> read_materials(JsonReader& root, json& doc,
                                           const std::map<std::string, int>& texture_index, Scene& s) {
   std::map<std::string, int> material_index;
-  TextureRefs texture_refs{texture_index, s.textures, {}};
+  TextureRefs texture_refs{texture_index, s.textures, {}, {}};
   if (root.has("materials")) {
     JsonReader all = root.object("materials");
     for (auto it = doc["materials"].begin(); it != doc["materials"].end(); ++it) {

@@ -129,6 +129,10 @@ double linear_to_srgb(double c) {
   return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1 / 2.4) - 0.055;
 }
 
+uint32_t encode_unorm(float n, int bits) {
+  return uint32_t(std::lround(std::clamp((n + 1.0f) * 0.5f, 0.0f, 1.0f) * float((1u << bits) - 1)));
+}
+
 Texture decode_unorm_normals(const Texture& t) {
   Texture d = t;
   d.srgb = false, d.unorm = false;

@@ -32,6 +32,9 @@ Texture decode_srgb(const Texture& t);
 // A normal map read from an 8- or 16-bit image: x ↦ 2x − 1 on R, G, B, the stored
 // (N + 1) / 2 back to N (docs/scene-format.md).
 Texture decode_unorm_normals(const Texture& t);
+// A normal's component as such an image stores it in `bits`: (n + 1) / 2 in
+// 0 … 2^bits − 1, rounded to nearest (clamped to [−1, 1]).
+uint32_t encode_unorm(float n, int bits);
 
 // Procedural textures for tests and demos. All are periodic over [0,1]², so they tile
 // seamlessly under Wrap::Repeat. Noise values lie in [0, 1].

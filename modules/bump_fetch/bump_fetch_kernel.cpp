@@ -15,12 +15,11 @@ bool BumpFetchKernel::needed(const core::Scene& scene) {
 }
 
 namespace {
-// Each component as 2^bits − 1 levels of (N + 1) / 2, rounded to nearest, and back.
+// Each component as the texture memory holds it in `bits` (core::encode_unorm), and back.
 void store_unorm(core::Texture& t, int bits) {
-  const float levels = float((1 << bits) - 1);
+  const float levels = float((1u << bits) - 1);
   for (auto& texel : t.texels)
-    for (int k = 0; k < 3; ++k)
-      texel[k] = std::round(std::clamp((texel[k] + 1.0f) * 0.5f, 0.0f, 1.0f) * levels) / levels * 2.0f - 1.0f;
+    for (int k = 0; k < 3; ++k) texel[k] = float(core::encode_unorm(texel[k], bits)) / levels * 2.0f - 1.0f;
 }
 }  // namespace
 
