@@ -1,13 +1,22 @@
 #!/usr/bin/env bash
 # Draws out/sweep/sweep.csv (scripts/sweep.sh) with gnuplot: per block family, error
-# against wall time and against simulated cycles, Pareto fronts marked, as PNGs in
-# out/plots; prints the table of Pareto-optimal configurations per scene.
-# Usage: scripts/plot.sh [--doc] [SWEEP_CSV]   (--doc: the table into docs/benchmarks.md,
-#   between its markers)
+# against wall time, simulated cycles, operations and texture bytes, each point labelled,
+# the Pareto fronts as staircases, as PNGs in out/plots, all of them with every run on
+# one page, out/plots/index.html; prints the tables of Pareto-optimal configurations per
+# scene (against wall time, against cycles).
+# Usage: scripts/plot.sh [--doc] [SWEEP_CSV]   (--doc: the tables into docs/benchmarks.md,
+#   between its markers, and the PNGs to docs/images/sweep-*.png, which it shows)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 doc=0
 [[ ${1:-} == --doc ]] && { doc=1; shift; }
 "$root/scripts/setup.sh" gnuplot-nox
-report=(python3 "$root/scripts/plot.py" "${1:-$root/out/sweep/sweep.csv}" "$root/out/plots")
-if ((doc)); then python3 "$root/scripts/doc-tables.py" --run "$root/docs/benchmarks.md" pareto 1 -- "${report[@]}"; else "${report[@]}"; fi
+plots=$root/out/plots
+rm -f "$plots"/*.png  # only this run's plots, for --doc to copy
+report=(python3 "$root/scripts/plot.py" "${1:-$root/out/sweep/sweep.csv}" "$plots")
+if ((doc)); then
+  python3 "$root/scripts/doc-tables.py" --run "$root/docs/benchmarks.md" pareto 2 -- "${report[@]}"
+  for png in "$plots"/*.png; do cp "$png" "$root/docs/images/sweep-$(basename "$png")"; done
+else
+  "${report[@]}"
+fi

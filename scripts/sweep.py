@@ -3,6 +3,7 @@
 SystemC pipeline, each run against the golden model; one CSV row per run.
 
   scripts/sweep.py SHADETLM ROOT [--shard I/N] [--list] > rows.csv
+  scripts/sweep.py SHADETLM ROOT --time REPEATS < rows.csv > timed.csv
 
 Block families and their axes:
   normal    normal_interp.mode × normalize.mode        golden Phong scenes
@@ -13,10 +14,16 @@ Block families and their axes:
   cycles and cost the model emulation time, so their error is measured against the
   float32 frame by scripts/format-report.sh instead.
 --shard I/N runs the runs whose index is I modulo N (independent jobs: xargs -P here,
-a Slurm job array on a cluster). A progress bar goes to stderr when it is a terminal."""
+a Slurm job array on a cluster). Error, cycles and operations do not depend on what else
+runs; the wall time of a shard's run does, so it is one sample (wall_runs 1).
+--time REPEATS times the runs of rows.csv again, one process at a time, REPEATS rounds
+over all of them, and rewrites wall_s as the median, with the quartiles and the extremes
+as its spread (a finished sweep.csv can be timed again the same way). A progress bar goes to stderr when it is a terminal."""
 import csv
 import json
 import os
+import random
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -80,31 +87,101 @@ def progress(done, total):
     sys.stderr.flush()
 
 
-runs = plan()
-if "--list" in sys.argv:
-    print(len(runs))
-    sys.exit(0)
-mine = [(i, r) for i, r in enumerate(runs) if i % shards == shard]
-out = csv.writer(sys.stdout)
-out.writerow(["run", "family", "scene", "configuration", "wall_s", "frame_cycles", "pixels"] + OPS +
-             ["err_max", "err_rmse", "err_psnr"])
-tmp = tempfile.mkdtemp(prefix="sweep-")
-for k, (index, (family, scene, sets)) in enumerate(mine):
-    progress(k, len(mine))
+def render(tmp, scene, sets, compare):
+    """One run's statistics. Without compare the golden model is not rendered: wall_s is
+    the simulation's own time (sc_start), which the golden model never enters."""
     stats_file = os.path.join(tmp, "stats.json")
     cmd = [BIN, "render", os.path.join(ROOT, scene), "-o", os.path.join(tmp, "f.exr"), "--stats", stats_file,
-           "--compare-reference", "--set", "camera.resolution=" + RESOLUTION]
+           "--set", "camera.resolution=" + RESOLUTION]
+    if compare:
+        cmd.append("--compare-reference")
     for key, value in sets.items():
         cmd += ["--set", "%s=%s" % (key, value)]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
     with open(stats_file) as f:
-        s = json.load(f)
-    e = s["error"]["rgb"]
-    config = ";".join("%s=%s" % (k.replace("pipeline.", "").replace("materials.", ""), v) for k, v in sets.items())
-    out.writerow([index, family, scene, config, "%.6g" % s["wall_s"], s["frame_cycles"], s["pixels"]["shaded"]] +
-                 [s["ops"][op] for op in OPS] + [e["max"], e["rmse"], e["psnr"]])
-    sys.stdout.flush()
-progress(len(mine), len(mine))
-for name in os.listdir(tmp):
-    os.remove(os.path.join(tmp, name))
-os.rmdir(tmp)
+        return json.load(f)
+
+
+def measure(runs, tmp):
+    """--shard: one row per run of this shard, its error against the golden model."""
+    mine = [(i, r) for i, r in enumerate(runs) if i % shards == shard]
+    out = csv.writer(sys.stdout)
+    out.writerow(COLUMNS)
+    for k, (index, (family, scene, sets)) in enumerate(mine):
+        progress(k, len(mine))
+        s = render(tmp, scene, sets, True)
+        e = s["error"]["rgb"]
+        config = ";".join("%s=%s" % (key.replace("pipeline.", "").replace("materials.", ""), value)
+                          for key, value in sets.items())
+        wall = "%.6g" % s["wall_s"]
+        out.writerow([index, family, scene, config, wall, s["frame_cycles"], s["pixels"]["shaded"]] +
+                     [s["ops"][op] for op in OPS] + [e["max"], e["rmse"], e["psnr"]] + [wall] * 4 + [1])
+        sys.stdout.flush()
+    progress(len(mine), len(mine))
+
+
+def time_rows(runs, tmp, repeats):
+    """--time: every row's run again, REPEATS rounds, one process at a time. Each round
+    takes the rows in a new order (seeded, so reruns match): a slow spell of the machine,
+    or one run warming the caches for the next, then spreads over all configurations
+    instead of always hitting the same one."""
+    if repeats < 1:
+        sys.exit("sweep: --time needs at least 1 repeat")
+    rows = list(csv.DictReader(sys.stdin))
+    for r in rows:
+        family, scene, _ = runs[int(r["run"])]
+        if (family, scene) != (r["family"], r["scene"]):
+            sys.exit("sweep: run %s of the CSV is not run %s of this sweep.py" % (r["run"], r["run"]))
+    samples = {r["run"]: [] for r in rows}
+    # One run first, not counted: the first of a series comes out slow (binary, libraries
+    # and scene files not yet in the page cache).
+    if rows:
+        _, scene, sets = runs[int(rows[0]["run"])]
+        render(tmp, scene, sets, False)
+    for round_ in range(repeats):
+        order = list(rows)
+        random.Random(round_).shuffle(order)
+        for k, r in enumerate(order):
+            progress(round_ * len(rows) + k, repeats * len(rows))
+            _, scene, sets = runs[int(r["run"])]
+            samples[r["run"]].append(render(tmp, scene, sets, False)["wall_s"])
+    progress(repeats * len(rows), repeats * len(rows))
+    out = csv.DictWriter(sys.stdout, COLUMNS)
+    out.writeheader()
+    for r in rows:
+        r.update(spread(samples[r["run"]]))
+        out.writerow(r)
+
+
+def spread(t):
+    """The median of the samples, their quartiles (the middle half, which one run slowed
+    by something else on the machine does not move) and their extremes."""
+    q1, median, q3 = statistics.quantiles(t, n=4, method="inclusive") if len(t) > 1 else t * 3
+    times = dict(wall_s=median, wall_q1_s=q1, wall_q3_s=q3, wall_min_s=min(t), wall_max_s=max(t))
+    return dict({k: "%.6g" % v for k, v in times.items()}, wall_runs=len(t))
+
+
+# wall_s is the median of wall_runs samples, the columns after err_psnr its spread (at the
+# end, so that the columns before them stay where they were).
+COLUMNS = (["run", "family", "scene", "configuration", "wall_s", "frame_cycles", "pixels"] + OPS +
+           ["err_max", "err_rmse", "err_psnr", "wall_q1_s", "wall_q3_s", "wall_min_s", "wall_max_s", "wall_runs"])
+
+
+def main():
+    runs = plan()
+    if "--list" in sys.argv:
+        print(len(runs))
+        return
+    tmp = tempfile.mkdtemp(prefix="sweep-")
+    try:
+        if "--time" in sys.argv:
+            time_rows(runs, tmp, int(sys.argv[sys.argv.index("--time") + 1]))
+        else:
+            measure(runs, tmp)
+    finally:
+        for name in os.listdir(tmp):
+            os.remove(os.path.join(tmp, name))
+        os.rmdir(tmp)
+
+
+main()
