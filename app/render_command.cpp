@@ -98,6 +98,10 @@ struct RenderOptions {
   std::string vcd, region, triangles, timeline, timing_log, vectors;
 };
 
+bool ends_with(const std::string& text, const std::string& end) {
+  return text.size() >= end.size() && text.compare(text.size() - end.size(), end.size(), end) == 0;
+}
+
 // What the run records for inspection (waveforms, timeline, traced region and triangles),
 // from the options; throws if they name it wrongly or this build or engine cannot record it.
 modules::Inspect inspection_of(const RenderOptions& opt, const core::Scene& scene) {
@@ -124,10 +128,14 @@ modules::Inspect inspection_of(const RenderOptions& opt, const core::Scene& scen
       throw core::InputError("--trace-triangles", opt.triangles,
                              "starts past the scene's last triangle (" + std::to_string(triangles) + " triangles)");
   }
-  if (!inspect.vcd.empty() && (inspect.vcd.size() < 5 || inspect.vcd.substr(inspect.vcd.size() - 4) != ".vcd"))
+  if (!inspect.vcd.empty() && (inspect.vcd.size() < 5 || !ends_with(inspect.vcd, ".vcd")))
     throw core::InputError("--vcd", inspect.vcd, "the waveform file must end in .vcd");
-  if (!modules::kTracing && (!inspect.vcd.empty() || !inspect.timeline.empty()))
-    throw core::InputError("--vcd", inspect.vcd, "this build has tracing compiled out (SHADETLM_TRACING=OFF)");
+  if (!inspect.timeline.empty() && !ends_with(inspect.timeline, ".json") && !ends_with(inspect.timeline, ".html"))
+    throw core::InputError("--timeline", inspect.timeline,
+                           "the timeline is written as .json (trace events) or .html (the offline viewer)");
+  for (const auto& [option, path] : {std::pair{"--vcd", inspect.vcd}, std::pair{"--timeline", inspect.timeline}})
+    if (!modules::kTracing && !path.empty())
+      throw core::InputError(option, path, "this build has tracing compiled out (SHADETLM_TRACING=OFF)");
   if (opt.engine == "loop" && (!inspect.vcd.empty() || !inspect.timeline.empty() || inspect.timing_log ||
                                !inspect.vectors.empty()))
     throw core::InputError("--engine", "loop",
@@ -314,7 +322,8 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--vectors", opt->vectors,
                   "test vectors of the traced region: <folder>/<block>.in.hex and .out.hex (docs/rtl.md)")
       ->check(kNotEmpty);
-  cmd->add_option("--timeline", opt->timeline, "transaction timeline as Chrome trace-event JSON (Perfetto)")
+  cmd->add_option("--timeline", opt->timeline,
+                  "transaction timeline: FILE.html, a page that views it offline, or FILE.json, Chrome trace events")
       ->check(kNotEmpty);
   cmd->add_option("--timing-log", opt->timing_log,
                   "every pixel's start and hand-over cycle at every block, for `shadetlm timing-check`")

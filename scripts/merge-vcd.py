@@ -4,7 +4,7 @@
 `shadetlm timing-check --rtl-normalize M --rtl-vcd` made from the same render's timing
 log — the same cycles, as the timing check proves — scaling the RTL's times from one
 nanosecond a cycle to the render's clock period. Writes OUT.vcd and a GTKWave view
-OUT.gtkw beside it (absolute paths, as the render's view): the normalize block's
+OUT.gtkw beside it (paths relative to it, as the render's view): the normalize block's
 signals, then the RTL unit's pins and counters.
 
 Usage: scripts/merge-vcd.py PIPELINE.vcd RTL.vcd OUT.vcd [--clock-mhz 500]
@@ -170,9 +170,9 @@ def main():
     # It opens on the first traced pixel (the pipeline's first change after the start).
     first = next((t for t, ch in changes(p_steps, 0, p_ps) if t > 0 and ch), 0)
     gtkw = a.out[:-4] + ".gtkw"
-    view = [f"[dumpfile] \"{os.path.abspath(a.out)}\"", f"[savefile] \"{os.path.abspath(gtkw)}\"",
+    view = [f"[dumpfile] \"{os.path.basename(a.out)}\"", f"[savefile] \"{os.path.basename(gtkw)}\"",
             f"[timestart] {first}", "[sst_expanded] 1", "@800200", "-normalize (TLM)"]
-    style = lambda kind, name: "@8420" if kind == "real" else "@28" if "[" not in name else "@24"
+    style = lambda kind, name: "@40020" if kind == "real" else "@28" if "[" not in name else "@24"
     for k, kind, name in names:
         if k == 0 and ".normalize." in name:
             view += [style(kind, name), name]

@@ -1,19 +1,21 @@
 #!/usr/bin/env bash
 # A headless screenshot of a local HTML page (a report, a timeline) with Debian's chromium,
 # to look at a page without a browser: scripts/setup.sh chromium installs it.
-# Usage: scripts/screenshot.sh PAGE.html OUT.png [WIDTHxHEIGHT]   (default 1280x900)
+# Usage: scripts/screenshot.sh PAGE.html OUT.png [WIDTHxHEIGHT [FRAGMENT]]   (default 1280x900;
+#   FRAGMENT: the address's #part, e.g. a timeline's view=0-3000&select=5)
 # Exit 0 with OUT.png written; 2 on bad arguments or a missing page; 1 when chromium is
 # missing, fails, or writes no PNG.
 set -euo pipefail
-usage="usage: scripts/screenshot.sh PAGE.html OUT.png [WIDTHxHEIGHT]"
-(($# == 2 || $# == 3)) || { echo "$usage" >&2; exit 2; }
-page=$1 out=$2 size=${3:-1280x900}
+usage="usage: scripts/screenshot.sh PAGE.html OUT.png [WIDTHxHEIGHT [FRAGMENT]]"
+(($# >= 2 && $# <= 4)) || { echo "$usage" >&2; exit 2; }
+page=$1 out=$2 size=${3:-1280x900} fragment=${4:-}
 [[ -f $page ]] || { echo "screenshot.sh: no page $page" >&2; exit 2; }
 [[ $size =~ ^([0-9]+)x([0-9]+)$ ]] || { echo "screenshot.sh: size $size is not WIDTHxHEIGHT" >&2; exit 2; }
 width=${BASH_REMATCH[1]} height=${BASH_REMATCH[2]}
 command -v chromium >/dev/null || { echo "screenshot.sh: no chromium (scripts/setup.sh chromium)" >&2; exit 1; }
 
 url=$(python3 -c 'import pathlib, sys; print(pathlib.Path(sys.argv[1]).resolve().as_uri())' "$page")  # spaces, #, %
+[[ -z $fragment ]] || url+="#$fragment"
 mkdir -p "$(dirname "$out")"
 out=$(realpath "$out")
 rm -f "$out"  # so that a PNG left from an earlier run does not pass for this one

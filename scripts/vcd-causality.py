@@ -55,7 +55,7 @@ def read_vcd(path):
                 ident = next(tokens)
                 if ident in ids:
                     block, name = ids[ident]
-                    values.setdefault(block, {})[name] = int(tok[1:], 2)
+                    values.setdefault(block, {})[name] = None if tok == "bx" else int(tok[1:], 2)  # x: not valid
                     changed.add(block)
         flush()
     return seen, stalled[0]

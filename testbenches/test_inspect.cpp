@@ -1,8 +1,12 @@
 // Inspection (docs/inspecting.md): the VCD is well formed and says what the frame
 // says, the GTKWave view names only signals of the VCD, the timeline has one slice
 // per packet. Each test case runs one simulation (one per process).
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <random>
 #include <set>
 
@@ -46,6 +50,10 @@ TEST_CASE("the VCD is well formed and its traced values are the frame's", "[insp
     value[vcd.name_of.at(c.id)] = c.value;
   }
   flush();
+  // While not valid, the integers are x (triangle 0 and pixel 0, 0 exist).
+  uint64_t unknown = 0;
+  for (const auto& c : vcd.changes) unknown += vcd.name_of.at(c.id) == fb + "x[31:0]" && std::isnan(c.value);
+  CHECK(unknown > 0);
   int checked = 0;
   for (const auto& [xy, v] : written) {
     const size_t i = size_t(xy.second) * r.frame.width + xy.first;
@@ -79,10 +87,15 @@ TEST_CASE("the VCD is well formed and its traced values are the frame's", "[insp
     ++named;
   }
   CHECK(named > 30);
+  // The view names its dump by a path relative to itself (the pair can be moved).
+  std::ifstream view((dir / "trace.gtkw").string());
+  const std::string text((std::istreambuf_iterator<char>(view)), std::istreambuf_iterator<char>());
+  CHECK(text.find("[dumpfile] \"trace.vcd\"") != std::string::npos);
   CHECK(blocks.size() == r.blocks.size() - 1);  // every block but setup has a probe
 }
 
-TEST_CASE("the timeline is trace-event JSON with one slice per packet", "[inspect][systemc]") {
+TEST_CASE("the timeline: a slice per packet, named by what it carries, flows across the blocks, counters",
+          "[inspect][systemc]") {
   test::route_systemc_reports_to_failures();
   const auto dir = test::temp_dir("timeline");
   const core::Scene scene = core::load_scene(test::source_path("golden/demo/scene.json"));
@@ -91,22 +104,32 @@ TEST_CASE("the timeline is trace-event JSON with one slice per packet", "[inspec
   const modules::RenderResult r = modules::render_systemc(scene, inspect);
   std::ifstream in(inspect.timeline);
   const nlohmann::json j = nlohmann::json::parse(in);  // throws if not valid JSON
+  CHECK(j.at("otherData").at("time_unit") == "cycles");
   std::map<int, std::string> track;
-  std::map<int, uint64_t> slices;
-  std::map<std::string, uint64_t> counters;  // FIFO occupancy samples per block
+  std::map<int, uint64_t> slices, slice_end;
+  std::map<std::string, uint64_t> counters;  // samples per counter
+  std::map<uint64_t, std::vector<int>> flows;  // per flow id, its tracks in order
   for (const auto& e : j.at("traceEvents")) {
+    if (e.at("ph") == "M" && e.at("name") == "thread_name") track[e.at("tid")] = e.at("args").at("name");
+    if (e.contains("ts")) CHECK(e.at("ts").is_number_unsigned());  // integer cycles
     if (e.at("ph") == "C") {
       ++counters[e.at("name")];
-      CHECK(e.at("args").at("pixels").get<uint64_t>() <= 8);  // the default FIFO depth
+      const nlohmann::json& v = e.at("args");
+      if (v.contains("pixels")) CHECK(v.at("pixels").get<double>() <= 8);  // the default FIFO depth
+      if (v.contains("percent")) CHECK(v.at("percent").get<double>() <= 100);
     }
-    if (e.at("ph") == "M" && e.at("name") == "thread_name") track[e.at("tid")] = e.at("args").at("name");
     if (e.at("ph") == "X") {
-      ++slices[e.at("tid")];
-      CHECK(e.at("dur").get<double>() >= 0);
-      CHECK(e.at("args").contains("pixels"));
-      CHECK(e.at("args").contains("triangle"));
-      CHECK(e.at("args").contains("stalled_cycles"));
+      const int tid = e.at("tid");
+      ++slices[tid];
+      const uint64_t ts = e.at("ts"), dur = e.at("dur");
+      CHECK(ts >= slice_end[tid]);  // a track's slices never overlap
+      slice_end[tid] = ts + dur;
+      const nlohmann::json& a = e.at("args");
+      const std::string name = e.at("name");
+      CHECK(name.rfind("tri " + std::to_string(a.at("triangle").get<uint32_t>()), 0) == 0);
+      if (tid >= 1) CHECK(name.find(std::to_string(a.at("pixels").get<int>()) + " px") != std::string::npos);
     }
+    if (e.at("ph") == "s" || e.at("ph") == "t" || e.at("ph") == "f") flows[e.at("id")].push_back(e.at("tid"));
   }
   REQUIRE(track.size() == r.blocks.size());
   for (size_t b = 0; b < r.blocks.size(); ++b) {
@@ -115,9 +138,57 @@ TEST_CASE("the timeline is trace-event JSON with one slice per packet", "[inspec
     // setup: one slice per triangle; the raster and the span blocks: one per packet.
     const uint64_t expected = b < 1 ? r.triangles_drawn : r.blocks[b].stats.packets;
     CHECK(slices[int(b)] == expected);
-    // A FIFO sample for each pixel a span block took.
-    if (b >= 2) CHECK(counters[r.blocks[b].name + " FIFO"] == r.blocks[b].stats.pixels);
+    CHECK(counters[r.blocks[b].name + " utilization"] > 0);
+    if (b >= 2) CHECK(counters[r.blocks[b].name + " FIFO"] > 0);
   }
+  // One flow a packet, from the raster through every span block, in pipeline order.
+  CHECK(flows.size() == r.blocks[1].stats.packets);
+  for (const auto& [id, tracks] : flows) {
+    CHECK(tracks.front() == 1);
+    CHECK(std::is_sorted(tracks.begin(), tracks.end()));
+  }
+}
+
+TEST_CASE("the timeline of a traced region keeps its triangles and packets on every track", "[inspect][systemc]") {
+  test::route_systemc_reports_to_failures();
+  const auto dir = test::temp_dir("timeline-region");
+  const core::Scene scene = core::load_scene(test::source_path("golden/demo/scene.json"));
+  modules::Inspect inspect;
+  inspect.timeline = (dir / "region.html").string();
+  inspect.region = {40, 20, 59, 35};
+  inspect.region_given = true;
+  const modules::RenderResult r = modules::render_systemc(scene, inspect);
+  std::ifstream in(inspect.timeline);
+  const std::string page((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The page holds the trace: the JSON between its script element's tags.
+  const std::string open = "<script id=\"trace-data\" type=\"application/json\">";
+  const size_t from = page.find(open);
+  REQUIRE(from != std::string::npos);
+  const size_t to = page.find("</script>", from);
+  const nlohmann::json j = nlohmann::json::parse(page.substr(from + open.size(), to - from - open.size()));
+  std::set<uint32_t> setup, rastered;  // triangles with a slice on setup's track, on the raster's
+  uint64_t packets = 0;
+  for (const auto& e : j.at("traceEvents")) {
+    if (e.at("ph") != "X") continue;
+    const nlohmann::json& a = e.at("args");
+    if (e.at("tid") == 0) {
+      setup.insert(a.at("triangle").get<uint32_t>());
+      continue;
+    }
+    if (e.at("tid") == 1) rastered.insert(a.at("triangle").get<uint32_t>());
+    ++packets;
+    INFO(e.dump());
+    CHECK(a.at("y").get<int>() >= 20);
+    CHECK(a.at("y").get<int>() <= 35);
+    CHECK(a.at("x").get<int>() <= 59);
+    CHECK(a.at("x").get<int>() + a.at("pixels").get<int>() > 40);
+  }
+  CHECK(packets > 0);
+  // Setup keeps the triangles whose bounds reach the region: those with packets there
+  // and few more (the region is 3.5 % of the frame).
+  CHECK(std::includes(setup.begin(), setup.end(), rastered.begin(), rastered.end()));
+  CHECK(setup.size() < rastered.size() * 11 / 10);
+  CHECK(setup.size() < r.triangles_drawn / 4);
 }
 
 TEST_CASE("every traced record reaches the VCD, also when the replay idles", "[inspect][systemc]") {

@@ -2,6 +2,7 @@
 // A small reader of the VCD files SystemC writes, for the tests: the declarations
 // (full names with their scopes, as GTKWave shows them) and every value change.
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -68,7 +69,10 @@ inline Vcd read_vcd(const std::string& path) {
     } else if (token[0] == 'r' || token[0] == 'b') {  // real or vector: value then id
       std::string id;
       in >> id;
-      const double value = token[0] == 'r' ? std::stod(token.substr(1)) : double(std::stoull(token.substr(1), nullptr, 2));
+      // An unknown vector (bx: not valid) reads as NaN.
+      const double value = token[0] == 'r'      ? std::stod(token.substr(1))
+                           : token == "bx"      ? std::numeric_limits<double>::quiet_NaN()
+                                                : double(std::stoull(token.substr(1), nullptr, 2));
       v.changes.push_back({now, id, value});
     } else {  // a bit: value and id joined
       v.changes.push_back({now, token.substr(1), double(token[0] == '1')});

@@ -98,11 +98,20 @@ class BlockInfo : public TimedObserver {
   uint32_t track_ = 0;
   bool last_of_pass_ = false;
 
+  // Its FIFO in the timeline, for every packet traced or not (bypassed too): each
+  // pixel's arrival (the cycle after the hand-over) and start.
+  void count_fifo(const SpanPacket& p, const PixelLine& line, int slot) {
+    if (timeline_ && slot > 0)
+      for (int i = 0; i < p.count; ++i)
+        timeline_->count(track_, uint64_t(line.handed(slot - 1, i) + 1), uint64_t(line.start(slot, i)));
+  }
+
   // Records the timed packet's pixels at `slot` of `line`: each pixel's values at the
   // cycle the block hands it on, and a timeline slice from its first start to its last
   // hand-over.
   template <class Values>
   void record_timed(const SpanPacket& p, const PixelLine& line, int slot, Values values) {
+    count_fifo(p, line, slot);
     if (!triangle_kept(p.tri->id)) return;
     if (tracer_ && probe_ >= 0 && tracer_->region().covers(p.y, p.x0, p.x0 + p.count, p.tri->id)) {
       double v[16];
@@ -117,10 +126,8 @@ class BlockInfo : public TimedObserver {
       const int64_t first = line.start(slot, 0), last = line.handed(slot, p.count - 1);
       uint64_t stalled = 0;  // cycles its pixels waited, done, for room downstream
       for (int i = 0; i < p.count; ++i) stalled += uint64_t(line.handed(slot, i) - line.valid_from(slot, i));
-      timeline_->add(track_, uint64_t(first), uint64_t(last + 1 - first), uint32_t(p.count), p.tri->id, stalled);
-      if (slot > 0)  // its FIFO as each pixel came in
-        for (int i = 0; i < p.count; ++i)
-          timeline_->count(track_, uint64_t(line.handed(slot - 1, i)), uint32_t(line.fifo_after(slot, i)));
+      timeline_->add_packet(track_, uint64_t(first), uint64_t(last + 1 - first), uint32_t(p.count), p.tri->id, p.y, p.x0,
+                            stalled);
     }
   }
 };
@@ -189,7 +196,8 @@ class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
   }
 
   void timed(const SpanPacket& p) override {  // its waveforms and timeline slice
-    if (!kTracing || !line_ || p.count == 0 || !worked_) return;
+    if (!kTracing || !line_ || p.count == 0) return;
+    if (!worked_) return count_fifo(p, *line_, slot_);  // bypassed: no values, no slice
     record_timed(p, *line_, slot_, [&](int i, double* v) { std::copy(traced_values_[i], traced_values_[i] + 16, v); });
   }
 

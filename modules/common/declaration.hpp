@@ -71,6 +71,8 @@ class Block {
 
   // The SystemC engine: the module around the kernel (a BlockInfo that is an sc_module).
   virtual std::unique_ptr<BlockInfo> module(const char* name, Timing timing, sc_core::sc_time period) = 0;
+  // The values its waveform probe shows, in the order the module records them; "name:int"
+  // for an integer (a 32-bit signal), the others are reals.
   virtual std::vector<std::string> trace_names() const { return {}; }
 
   // Statistics, after the run: its operations, and what else it counted into its own

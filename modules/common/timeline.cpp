@@ -1,41 +1,169 @@
 #include "shadetlm/modules/common/timeline.hpp"
 
 #include <algorithm>
-#include <sstream>
-#include <stdexcept>
+#include <charconv>
+#include <numeric>
+#include <tuple>
 
-#include "shadetlm/core/frame.hpp"
+#include <nlohmann/json.hpp>
+
+#include "shadetlm/core/output.hpp"
+#include "shadetlm/core/version.hpp"
 
 namespace shadetlm::modules {
 
-void Timeline::write(const std::string& path, const std::vector<std::string>& names, double clock_mhz) const {
-  std::ostringstream out;
-  {
-    out.precision(12);
-    out << "{\"displayTimeUnit\": \"ns\", \"traceEvents\": [\n";
-    // Track names, in pipeline order.
-    for (size_t b = 0; b < names.size(); ++b)
-      out << "{\"ph\": \"M\", \"pid\": 1, \"tid\": " << b << ", \"name\": \"thread_name\", \"args\": {\"name\": \""
-          << names[b] << "\"}},\n{\"ph\": \"M\", \"pid\": 1, \"tid\": " << b
-          << ", \"name\": \"thread_sort_index\", \"args\": {\"sort_index\": " << b << "}},\n";
-    out << "{\"ph\": \"M\", \"pid\": 1, \"name\": \"process_name\", \"args\": {\"name\": \"shadetlm pipeline\"}}";
-    for (const auto& s : slices_)
-      out << ",\n{\"ph\": \"X\", \"pid\": 1, \"tid\": " << s.block << ", \"name\": \"" << names[s.block]
-          << "\", \"ts\": " << double(s.start) / clock_mhz << ", \"dur\": " << double(s.busy) / clock_mhz
-          << ", \"args\": {\"pixels\": " << s.pixels << ", \"cycles\": " << s.busy << ", \"start_cycle\": "
-          << s.start << ", \"triangle\": " << s.triangle << ", \"stalled_cycles\": " << s.stalled << "}}";
-    for (const auto& c : counts_)
-      out << ",\n{\"ph\": \"C\", \"pid\": 1, \"name\": \"" << names[c.block] << " FIFO\", \"ts\": "
-          << double(c.cycle) / clock_mhz << ", \"args\": {\"pixels\": " << c.fifo << "}}";
-    for (size_t k = 0; k < dram_bytes_.size(); ++k) {  // bytes a cycle over each bin (the last one's part)
-      const uint64_t from = k * dram_bin_, length = std::max<uint64_t>(std::min(dram_bin_, dram_end_ - std::min(dram_end_, from)), 1);
-      out << ",\n{\"ph\": \"C\", \"pid\": 1, \"name\": \"DRAM bandwidth\", \"ts\": " << double(from) / clock_mhz
-          << ", \"args\": {\"bytes_per_cycle\": " << double(dram_bytes_[k]) / double(length) << ", \"cycles\": " << length
-          << "}}";
-    }
-    out << "\n]}\n";
+extern const char* const kTimelineViewer;  // timeline_viewer.html, built in (CMakeLists.txt)
+
+namespace {
+
+// The JSON's text, appended to a string: numbers through to_chars (150 000 slices).
+struct Json {
+  std::string& out;
+  Json& operator<<(std::string_view s) {
+    out += s;
+    return *this;
   }
-  core::write_file(path, out.str());
+  Json& operator<<(uint64_t n) {
+    char b[24];
+    out.append(b, size_t(std::to_chars(b, b + sizeof b, n).ptr - b));
+    return *this;
+  }
+  Json& operator<<(double v) {  // shortest text that reads back as v
+    char b[32];
+    out.append(b, size_t(std::to_chars(b, b + sizeof b, v).ptr - b));
+    return *this;
+  }
+};
+
+std::string quoted(const std::string& text) {  // a JSON string, whatever the bytes
+  return nlohmann::json(text).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+// What a slice carries, as its name: "tri 12 · y 34 · x 10 · 8 px", setup's "tri 12".
+std::string slice_name(const Timeline::Slice& s) {
+  std::string name = "tri " + std::to_string(s.triangle);
+  if (s.y >= 0)
+    name += " \u00b7 y " + std::to_string(s.y) + " \u00b7 x " + std::to_string(s.x) + " \u00b7 " +
+            std::to_string(s.pixels) + " px";
+  return name;
+}
+
+}  // namespace
+
+// Each slice's length as drawn: a block overlaps packets (the next one starts while
+// the last pixels of this one are in flight or stalled), and a track's slices must not
+// overlap, so a slice is drawn up to the next one's start; its args keep the true span.
+std::vector<uint64_t> Timeline::shown_cycles() const {
+  std::vector<uint32_t> order(slices_.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return std::tie(slices_[a].block, slices_[a].start) < std::tie(slices_[b].block, slices_[b].start);
+  });
+  std::vector<uint64_t> shown(slices_.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    const Slice& s = slices_[order[k]];
+    shown[order[k]] = s.busy;
+    if (k + 1 < order.size() && slices_[order[k + 1]].block == s.block)
+      shown[order[k]] = std::min(s.busy, slices_[order[k + 1]].start - s.start);
+  }
+  return shown;
+}
+
+void Timeline::add_series(const std::string& name, const std::string& unit, uint64_t bin,
+                          const std::vector<uint64_t>& totals, uint64_t end, double scale) {
+  Series s{name, unit, bin, end, {}};
+  for (size_t k = 0; k < totals.size() && k * bin < end; ++k) {
+    const uint64_t length = std::min(bin, end - k * bin);  // the last bin's part
+    s.per_bin.push_back(double(totals[k]) / double(length) * scale);
+  }
+  series_.push_back(std::move(s));
+}
+
+// One chain of flow events a packet, through its slices in pipeline order: "s" in the
+// first, "t" in those between, "f" in the last, each at its slice's start (inside it).
+// A packet is its triangle, row and first pixel.
+void Timeline::write_flows(std::string& text) const {
+  std::vector<uint32_t> order;
+  for (uint32_t k = 0; k < slices_.size(); ++k)
+    if (slices_[k].y >= 0) order.push_back(k);
+  auto key = [&](uint32_t k) {
+    const Slice& s = slices_[k];
+    return std::tuple(s.triangle, s.y, s.x, s.block, s.start);
+  };
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+  Json out{text};
+  uint64_t id = 0;
+  for (size_t first = 0; first < order.size();) {
+    size_t last = first;
+    const Slice& head = slices_[order[first]];
+    while (last + 1 < order.size() && slices_[order[last + 1]].triangle == head.triangle &&
+           slices_[order[last + 1]].y == head.y && slices_[order[last + 1]].x == head.x)
+      ++last;
+    for (size_t k = first; last > first && k <= last; ++k) {
+      const Slice& s = slices_[order[k]];
+      out << ",\n{\"ph\": \"" << (k == first ? "s" : k == last ? "f" : "t") << "\"" << (k == last ? ", \"bp\": \"e\"" : "")
+          << ", \"pid\": 1, \"tid\": " << uint64_t(s.block) << ", \"cat\": \"packet\", \"name\": \"packet\", \"id\": " << id
+          << ", \"ts\": " << s.start << "}";
+    }
+    ++id, first = last + 1;
+  }
+}
+
+void Timeline::add_fifo_series(const std::vector<std::string>& names, uint64_t end) {
+  for (size_t b = 0; b < waited_.size(); ++b)
+    if (!waited_[b].empty()) add_series(names[b] + " FIFO", "pixels", fifo_bin_, waited_[b], end, 1);
+}
+
+std::string Timeline::json(const std::vector<std::string>& names, double clock_mhz, const std::string& scene) const {
+  std::string text;
+  Json out{text};
+  out << "{\"displayTimeUnit\": \"ns\", \"otherData\": {\"time_unit\": \"cycles\", \"clock_mhz\": " << clock_mhz
+      << ", \"version\": " << quoted(core::kVersion) << ", \"scene\": " << quoted(scene) << "},\n\"traceEvents\": [\n"
+      << "{\"ph\": \"M\", \"pid\": 1, \"name\": \"process_name\", \"args\": {\"name\": \"shadetlm pipeline\"}}";
+  for (size_t b = 0; b < names.size(); ++b)  // the tracks, in pipeline order
+    out << ",\n{\"ph\": \"M\", \"pid\": 1, \"tid\": " << uint64_t(b) << ", \"name\": \"thread_name\", \"args\": {\"name\": "
+        << quoted(names[b]) << "}},\n{\"ph\": \"M\", \"pid\": 1, \"tid\": " << uint64_t(b)
+        << ", \"name\": \"thread_sort_index\", \"args\": {\"sort_index\": " << uint64_t(b) << "}}";
+  uint64_t from = UINT64_MAX, to = 0;  // the slices' span
+  const std::vector<uint64_t> shown = shown_cycles();
+  for (size_t k = 0; k < slices_.size(); ++k) {
+    const Slice& s = slices_[k];
+    from = std::min(from, s.start), to = std::max(to, s.start + s.busy);
+    out << ",\n{\"ph\": \"X\", \"pid\": 1, \"tid\": " << uint64_t(s.block) << ", \"name\": \"" << slice_name(s)
+        << "\", \"ts\": " << s.start << ", \"dur\": " << shown[k] << ", \"args\": {\"triangle\": " << uint64_t(s.triangle);
+    if (s.y >= 0)
+      out << ", \"y\": " << uint64_t(s.y) << ", \"x\": " << uint64_t(s.x) << ", \"pixels\": " << uint64_t(s.pixels)
+          << ", \"stalled_cycles\": " << s.stalled;
+    out << ", \"cycles\": " << s.busy << "}}";
+  }
+  write_flows(text);
+  for (const auto& s : series_)
+    for (size_t k = 0; k < s.per_bin.size(); ++k) {
+      const uint64_t start = k * s.bin;
+      if (region_ && (start + s.bin <= from || start >= to)) continue;
+      out << ",\n{\"ph\": \"C\", \"pid\": 1, \"name\": " << quoted(s.name) << ", \"ts\": " << start << ", \"args\": {\""
+          << s.unit << "\": " << s.per_bin[k] << "}}";
+    }
+  out << "\n]}\n";
+  return text;
+}
+
+std::string timeline_page(const std::string& json) {
+  // Inside <script>, "</script" or "<!--" in a string (a scene's path) would end or
+  // change the element: every < becomes \u003c, the same JSON string.
+  std::string escaped;
+  escaped.reserve(json.size());
+  for (char c : json) escaped += c == '<' ? std::string_view("\\u003c") : std::string_view(&c, 1);
+  const std::string page = kTimelineViewer, mark = "/*SHADETLM_TRACE_JSON*/";
+  const size_t at = page.find(mark);
+  return page.substr(0, at) + escaped + page.substr(at + mark.size());
+}
+
+void Timeline::write(const std::string& path, const std::vector<std::string>& names, double clock_mhz,
+                     const std::string& scene) const {
+  const bool html = path.size() >= 5 && path.compare(path.size() - 5, 5, ".html") == 0;
+  const std::string text = json(names, clock_mhz, scene);
+  core::write_file(path, html ? timeline_page(text) : text);
 }
 
 }  // namespace shadetlm::modules

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "shadetlm/core/output.hpp"
 #include "shadetlm/core/version.hpp"
@@ -20,9 +21,10 @@ int Tracer::add_probe(const std::string& block, const std::vector<std::string>& 
     info.names.push_back("shadetlm." + block + "." + n);
     info.is_real.push_back(false);
   }
-  for (const auto& n : values) {
-    info.names.push_back("shadetlm." + block + "." + n);
-    info.is_real.push_back(true);
+  for (const auto& n : values) {  // "texel_x:int": an integer value
+    const bool integer = n.size() > 4 && n.compare(n.size() - 4, 4, ":int") == 0;
+    info.names.push_back("shadetlm." + block + "." + (integer ? n.substr(0, n.size() - 4) : n));
+    info.is_real.push_back(!integer);
   }
   value_count_.push_back(values.size());
   info_.push_back(info);
@@ -90,6 +92,7 @@ class VcdText {
 }  // namespace
 
 void Tracer::write_vcd(const std::string& path) {
+  const double kUnknown = std::numeric_limits<double>::quiet_NaN();  // an integer written as x
   // The signals' current values: per probe valid, ready, x, y, triangle, then values.
   struct Signal {
     std::string id;
@@ -113,6 +116,7 @@ void Tracer::write_vcd(const std::string& path) {
       if (s.real) vcd << "$var real 64 " << s.id << " " << name << " $end\n";
       else if (k <= 1) vcd << "$var wire 1 " << s.id << " " << name << " $end\n";
       else vcd << "$var wire 32 " << s.id << " " << name << " [31:0] $end\n";
+      if (k > 1 && !s.real) s.value = kUnknown;  // x until a pixel is valid
       signals[p].push_back(s);
     }
     vcd << "$upscope $end\n";
@@ -126,6 +130,7 @@ void Tracer::write_vcd(const std::string& path) {
         if (s.dumped && !all && std::memcmp(&s.value, &s.written, sizeof s.value) == 0) continue;
         if (s.real) vcd.real(s.value);
         else if (k <= 1) vcd << (s.value != 0 ? "1" : "0");
+        else if (std::isnan(s.value)) vcd << "bx";
         else vcd.binary(uint32_t(int64_t(s.value)));
         vcd << (s.real || k > 1 ? " " : "") << s.id << "\n";
         s.written = s.value, s.dumped = true;
@@ -143,8 +148,10 @@ void Tracer::write_vcd(const std::string& path) {
     for (; e < events.size() && events[e].cycle == cycle; ++e) {
       const Event& ev = events[e];
       std::vector<Signal>& s = signals[size_t(ev.probe)];
-      if (ev.kind == 0) {
+      if (ev.kind == 0) {  // not valid: the integers x, the reals hold (valid qualifies them)
         s[0].value = s[1].value = 0;
+        for (size_t k = 2; k < s.size(); ++k)
+          if (!s[k].real) s[k].value = kUnknown;
       } else if (ev.kind == 2) {
         s[1].value = 1;
       } else {

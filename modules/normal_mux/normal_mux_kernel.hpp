@@ -28,7 +28,7 @@ class NormalMuxKernel {
 
   // Waveforms: which input is selected (1: the fetched normal), and the normal out.
   void set_capture(bool) {}
-  static std::vector<std::string> trace_names() { return {"select_fetched", "n_x", "n_y", "n_z"}; }
+  static std::vector<std::string> trace_names() { return {"select_fetched:int", "n_x", "n_y", "n_z"}; }
   void trace(const SpanPacket& p, int i, double* out) const {
     out[0] = core::fetches_normal(p.tri->material->path) ? 1 : 0;
     for (int c = 0; c < 3; ++c) out[1 + c] = p.n[c][i];

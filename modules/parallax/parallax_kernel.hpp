@@ -112,7 +112,7 @@ class ParallaxKernel {
   NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
 
   void set_capture(bool on) { capture_ = on; }
-  static std::vector<std::string> trace_names() { return {"u", "v", "u_out", "v_out", "iterations"}; }
+  static std::vector<std::string> trace_names() { return {"u", "v", "u_out", "v_out", "iterations:int"}; }
   void trace(const SpanPacket& p, int i, double* out) const {
     out[0] = captured_[0][i], out[1] = captured_[1][i];
     out[2] = p.uvp[0][i], out[3] = p.uvp[1][i], out[4] = p.iterations[i];

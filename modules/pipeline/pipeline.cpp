@@ -140,7 +140,7 @@ class Top : public sc_core::sc_module {
     for (size_t i = 0; i <= line.size(); ++i) modules_[i]->join_line(line_.get(), int(i) - 1);
     // The DRAM's bytes over time: for the timeline's counter and the stats' over_time.
     if (line_->dram() && (inspect.bin_cycles > 0 || !inspect.timeline.empty()))
-      line_->dram()->keep_histogram(inspect.bin_cycles > 0 ? inspect.bin_cycles : kTimelineDramBin);
+      line_->dram()->keep_histogram(inspect.bin_cycles > 0 ? inspect.bin_cycles : kTimelineBin);
 
     const core::Camera& camera = pipeline.scene().camera;
     region_ = inspect.region;
@@ -148,6 +148,7 @@ class Top : public sc_core::sc_module {
     const TraceRegion* filter = inspect.region_given ? &region_ : nullptr;
     if (!inspect.vcd.empty()) tracer_ = std::make_unique<Tracer>(region_, period_);
     Timeline* timeline = inspect.timeline.empty() ? nullptr : &timeline_;
+    if (timeline) timeline_.keep_fifos(uint32_t(modules_.size()), inspect.bin_cycles > 0 ? inspect.bin_cycles : kTimelineBin);
     if (!inspect.vectors.empty())
       for (auto& m : modules_)
         if (auto layout = m->vector_layout()) {
@@ -158,7 +159,8 @@ class Top : public sc_core::sc_module {
       const auto names = pipeline.blocks()[i].block->trace_names();
       const int probe = tracer_ && !names.empty() ? tracer_->add_probe(pipeline.blocks()[i].name, names) : -1;
       modules_[i]->attach(tracer_.get(), probe, timeline, uint32_t(i), filter);
-      modules_[i]->keep_histogram(inspect.bin_cycles);
+      // Utilization over time: for the stats' over_time and the timeline's counters.
+      modules_[i]->keep_histogram(inspect.bin_cycles > 0 ? inspect.bin_cycles : timeline ? kTimelineBin : 0);
       if (kTracing && (tracer_ || timeline) && i >= 1 && i <= line.size()) line_->watch(modules_[i].get());
     }
   }
@@ -169,8 +171,9 @@ class Top : public sc_core::sc_module {
   Timeline& timeline_slices() { return timeline_; }
   const std::vector<std::unique_ptr<VectorFile>>& vectors() const { return vectors_; }
   PixelLine& line() { return *line_; }
-  // The timeline's DRAM counter, without a bin asked for: a point every this many cycles.
-  static constexpr uint64_t kTimelineDramBin = 256;
+  // The timeline's utilization and DRAM counters, without a bin asked for: a point
+  // every this many cycles.
+  static constexpr uint64_t kTimelineBin = 256;
   std::vector<std::string> names() const {
     std::vector<std::string> n;
     for (const auto& m : modules_) n.push_back(m->block_name());
@@ -233,6 +236,25 @@ RenderResult render_systemc(const core::Scene& scene, const PipelineDecl& declar
   return run_systemc(pipeline, inspect);
 }
 
+namespace {
+// The timeline's counters from the run's bins (each block's busy cycles, the DRAM's
+// bytes, the FIFOs' occupancy), then the file.
+void write_timeline(Top& top, const RenderResult& r, const Inspect& inspect, const std::string& scene) {
+  Timeline& timeline = top.timeline_slices();
+  const uint64_t bin = inspect.bin_cycles > 0 ? inspect.bin_cycles : Top::kTimelineBin;
+  for (const auto& m : top.modules())
+    if (!m->times().busy_per_bin.empty())
+      timeline.add_series(m->block_name() + " utilization", "percent", bin, m->times().busy_per_bin, r.frame_cycles, 100);
+  if (const Dram* dram = top.line().dram(); dram && !dram->bytes_per_bin().empty())
+    timeline.add_series("DRAM bandwidth", "bytes_per_cycle", bin, dram->bytes_per_bin(), r.frame_cycles, 1);
+  timeline.add_fifo_series(top.names(), r.frame_cycles);
+  if (inspect.region_given) timeline.limit_to_region();
+  timeline.write(inspect.timeline, top.names(), r.clock_mhz, scene);
+}
+}  // namespace
+
+constexpr uint64_t kFirstView = 256;  // cycles the waveform view opens on
+
 RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
   if (inspect.progress) pipeline.blocks()[0].block->set_progress(inspect.progress);
   const double clock_mhz = pipeline.clock_mhz();
@@ -272,15 +294,14 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
     r.trace_records = top.tracer()->records();
     top.tracer()->write_vcd(inspect.vcd);
     const double ps = 1e6 / clock_mhz;
+    // The view opens on the first traced packets: a window of kFirstView cycles, where a
+    // one-cycle valid pulse is a few pixels wide.
+    const uint64_t first = top.tracer()->first_cycle(), last = std::min(top.tracer()->last_cycle(), first + kFirstView);
     write_gtkw(inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw", inspect.vcd, top.tracer()->probes(),
-               double(top.tracer()->first_cycle()) * ps, double(top.tracer()->last_cycle()) * ps);
+               double(first) * ps, double(last) * ps);
   }
-  if (const Dram* dram = top.line().dram(); dram && !dram->bytes_per_bin().empty()) {
-    const uint64_t bin = inspect.bin_cycles > 0 ? inspect.bin_cycles : Top::kTimelineDramBin;
-    top.timeline_slices().set_dram(bin, dram->bytes_per_bin(), r.frame_cycles);
-    if (inspect.bin_cycles > 0) r.dram_bytes_per_bin = dram->bytes_per_bin();
-  }
-  if (!inspect.timeline.empty()) top.timeline_slices().write(inspect.timeline, top.names(), clock_mhz);
+  if (const Dram* dram = top.line().dram(); dram && inspect.bin_cycles > 0) r.dram_bytes_per_bin = dram->bytes_per_bin();
+  if (!inspect.timeline.empty()) write_timeline(top, r, inspect, pipeline.scene().file);
   if (!top.vectors().empty()) {
     std::filesystem::create_directories(inspect.vectors);
     core::OutputSet files;  // a block's two files together or not at all
@@ -306,25 +327,28 @@ void write_gtkw(const std::string& path, const std::string& vcd, const std::vect
                 double from_ps, double to_ps) {
   // GTKWave's save format: "@<flags in hex>" sets how the following signals are
   // drawn, "-text" is a comment line. 28 = binary, right-justified (1-bit valid, ready);
-  // 24 = decimal; 8420 = analog step, signed, right-justified (real values).
+  // 24 = decimal (x, y, triangle); 424 = signed decimal (integer values); 40020 = real,
+  // its value written in the wave. The paths are relative, the VCD beside the view:
+  // GTKWave finds the dump from where the view file is, so the pair can be moved.
   std::ostringstream out;
   {
     out << "[*] shadetlm: the blocks in pipeline order\n"
-        << "[dumpfile] \"" << std::filesystem::absolute(vcd).string() << "\"\n"
-        << "[savefile] \"" << std::filesystem::absolute(path).string() << "\"\n"
+        << "[dumpfile] \"" << std::filesystem::path(vcd).filename().string() << "\"\n"
+        << "[savefile] \"" << std::filesystem::path(path).filename().string() << "\"\n"
         << "[timestart] " << uint64_t(from_ps) << "\n[size] 1400 900\n[sst_width] 200\n[signals_width] 240\n"
         << "[sst_expanded] 1\n";
     // Zoom: GTKWave 3.3 shows about 4.3·2^-zoom time units (ps here) across its default
-    // wave pane (measured through its Tcl interface); show the traced span and 5 % more
-    // (the dump runs 10 % past it: a window past the dump's end resets the start).
+    // wave pane (measured through its Tcl interface); show the window and 5 % more (the
+    // dump runs 10 % past the traced span: a window past the dump's end resets the start).
     const double zoom = -std::log2(std::max(1.0, (to_ps - from_ps) * 1.05 / 4.3));
     out << "*" << std::fixed << zoom << " -1\n";
     for (const auto& p : probes) {
       out << "@800200\n-" << p.block << "\n";  // a group per block
       for (size_t k = 0; k < p.names.size(); ++k) {
         if (k <= 1) out << "@28\n" << p.names[k] << "\n";  // valid, ready
-        else if (!p.is_real[k]) out << "@24\n" << p.names[k] << "[31:0]\n";
-        else out << "@8420\n" << p.names[k] << "\n@20000\n-\n";  // analog, one blank row of height
+        else if (k <= 4) out << "@24\n" << p.names[k] << "[31:0]\n";  // x, y, triangle
+        else if (!p.is_real[k]) out << "@424\n" << p.names[k] << "[31:0]\n";
+        else out << "@40020\n" << p.names[k] << "\n";
       }
       out << "@1000200\n-" << p.block << "\n";  // group end
     }

@@ -23,6 +23,13 @@ BlockStats Setup::stats() const {
   return s;
 }
 
+// With a traced region, the triangles whose covered pixels may reach into it.
+bool Setup::traced(const TriangleSetup& t) const {
+  if (!triangle_kept(t.id)) return false;
+  const core::SnappedTriangle& c = t.coverage;
+  return !filter_ || (c.x1 >= filter_->x0 && c.x0 <= filter_->x1 && c.y1 >= filter_->y0 && c.y0 <= filter_->y1);
+}
+
 void Setup::run() {
   quantum_.reset();
   tlm::tlm_generic_payload trans;
@@ -30,8 +37,7 @@ void Setup::run() {
   kernel_.run([&](const TriangleSetup& t) {
     const int64_t handed = line_.next();
     ++stats_.packets;
-    if (kTracing && timeline_ && triangle_kept(t.id))
-      timeline_->add(track_, uint64_t(line_.last_start()), timing_.ii, 0, t.id);
+    if (kTracing && timeline_ && traced(t)) timeline_->add_triangle(track_, uint64_t(line_.last_start()), timing_.ii, t.id);
     if (log_) log_->triangle(t.id, line_.last_start(), handed);
     trans.set_data_ptr(reinterpret_cast<unsigned char*>(const_cast<TriangleSetup*>(&t)));
     trans.set_data_length(sizeof(TriangleSetup));

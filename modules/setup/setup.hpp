@@ -30,6 +30,7 @@ class Setup : public sc_core::sc_module, public BlockInfo {
 
  private:
   void run();
+  bool traced(const TriangleSetup& t) const;  // in the timeline
 
   SetupKernel& kernel_;
   Timing timing_;

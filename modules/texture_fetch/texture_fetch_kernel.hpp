@@ -44,7 +44,7 @@ class TextureFetchKernel {
   void set_capture(bool on) { capture_ = on; }
   // texel_x, texel_y: the bilinear footprint's first texel (phong; −1 when filtered);
   // lod: the filter's level of detail (texture-screen; 0 for phong).
-  static std::vector<std::string> trace_names() { return {"u", "v", "texel_x", "texel_y", "lod", "r", "g", "b"}; }
+  static std::vector<std::string> trace_names() { return {"u", "v", "texel_x:int", "texel_y:int", "lod", "r", "g", "b"}; }
   void trace(const SpanPacket& p, int i, double* out) const {
     for (int c = 0; c < 5; ++c) out[c] = captured_[c][i];
     for (int c = 0; c < 3; ++c) out[5 + c] = p.tex[c][i];
