@@ -177,7 +177,8 @@ void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before, const std::ve
   }
   // Inspecting (times kept, utilization over time) or not: two copies of the loop, so
   // that the common one carries no test for it.
-  bool inspect = keep_times;
+  const bool watched = !watched_ || watched_(p);
+  bool inspect = keep_times && (watched || log_);
   for (const Slot& b : blocks_) inspect = inspect || b.t.bin_cycles > 0;
   if (dram_) {
     if (inspect) sweep_pixels<true, true>(count);
@@ -187,7 +188,8 @@ void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before, const std::ve
     else sweep_pixels<false, false>(count);
   }
   if (log_) log_->pixels(p, hidden_before, *this);
-  for (TimedObserver* o : observers_) o->timed(p);
+  if (watched)
+    for (TimedObserver* o : observers_) o->timed(p);
 }
 
 void PixelLine::settle() {

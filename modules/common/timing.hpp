@@ -147,6 +147,9 @@ class PixelLine {
   // At the pass's end: the span blocks' starved cycles (from their busy and blocked ones).
   void settle();
   void watch(TimedObserver* o) { observers_.push_back(o), keep_times = true; }
+  // Only the packets `watched` accepts are timed for the observers (waveforms of a
+  // region: the rest take the loop without inspection).
+  void watch_only(std::function<bool(const SpanPacket&)> watched) { watched_ = std::move(watched); }
   void set_log(TimingLog* log) { log_ = log, keep_times = keep_times || log; }
   TimingLog* log() const { return log_; }
   Work work(int slot) const { return blocks_[size_t(slot)].work; }
@@ -201,6 +204,7 @@ class PixelLine {
   int64_t triangle_start_ = -1;  // when the raster took its last triangle
   std::vector<std::vector<Times>> times_;
   std::vector<TimedObserver*> observers_;
+  std::function<bool(const SpanPacket&)> watched_;  // (empty: every packet)
   TimingLog* log_ = nullptr;
   std::unique_ptr<Dram> dram_;  // none: ideal memory
   std::vector<int64_t> depth_back_;  // the raster's last misses: when their data came back (a ring)

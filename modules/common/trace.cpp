@@ -33,12 +33,8 @@ int Tracer::add_probe(const std::string& block, const std::vector<std::string>& 
 
 void Tracer::record(int probe, uint64_t valid, uint64_t handed, int x, int y, uint32_t triangle,
                     const double* values) {
-  const uint64_t seq = events_.size();
-  Event e{valid, 1, seq, probe, x, y, triangle, {}};
-  std::copy(values, values + value_count_[size_t(probe)], e.values.begin());
-  events_.push_back(e);
-  events_.push_back({handed, 2, seq + 1, probe, 0, 0, 0, {}});      // the handshake
-  events_.push_back({handed + 1, 0, seq + 2, probe, 0, 0, 0, {}});  // then gone
+  Record& r = records_list_.emplace_back(Record{valid, handed, probe, x, y, triangle, {}});
+  std::copy(values, values + value_count_[size_t(probe)], r.values.begin());
   first_ = records_ == 0 ? valid : std::min(first_, valid);
   last_ = std::max(last_, handed + 1);
   ++records_;
@@ -98,7 +94,7 @@ void Tracer::write_vcd(const std::string& path) {
     std::string id;
     bool real;
     double value;  // (integers held exactly)
-    bool dumped = false;
+    bool touched = false;  // set in this time step
     double written = 0;
   };
   std::vector<std::vector<Signal>> signals(info_.size());
@@ -122,41 +118,59 @@ void Tracer::write_vcd(const std::string& path) {
     vcd << "$upscope $end\n";
   }
   vcd << "$upscope $end\n$enddefinitions $end\n";
-  // A time step's changes: each signal whose value differs from what was last written.
+  // A time step's changes: each signal set in it whose value differs from what was last
+  // written (all of them at the start).
+  std::vector<std::pair<int, size_t>> touched;
+  auto set = [&](int p, size_t k, double value) {
+    Signal& s = signals[size_t(p)][k];
+    if (!s.touched) touched.emplace_back(p, k), s.touched = true;
+    s.value = value;
+  };
+  auto write = [&](size_t k, Signal& s) {
+    if (s.real) vcd.real(s.value);
+    else if (k <= 1) vcd << (s.value != 0 ? "1" : "0");
+    else if (std::isnan(s.value)) vcd << "bx";
+    else vcd.binary(uint32_t(int64_t(s.value)));
+    vcd << (s.real || k > 1 ? " " : "") << s.id << "\n";
+    s.written = s.value;
+  };
   auto dump = [&](bool all) {
-    for (size_t p = 0; p < signals.size(); ++p)
-      for (size_t k = 0; k < signals[p].size(); ++k) {
-        Signal& s = signals[p][k];
-        if (s.dumped && !all && std::memcmp(&s.value, &s.written, sizeof s.value) == 0) continue;
-        if (s.real) vcd.real(s.value);
-        else if (k <= 1) vcd << (s.value != 0 ? "1" : "0");
-        else if (std::isnan(s.value)) vcd << "bx";
-        else vcd.binary(uint32_t(int64_t(s.value)));
-        vcd << (s.real || k > 1 ? " " : "") << s.id << "\n";
-        s.written = s.value, s.dumped = true;
-      }
+    if (all)
+      for (auto& probe : signals)
+        for (size_t k = 0; k < probe.size(); ++k) write(k, probe[k]);
+    for (const auto& [p, k] : touched) {
+      Signal& s = signals[size_t(p)][k];
+      s.touched = false;
+      if (!all && std::memcmp(&s.value, &s.written, sizeof s.value) != 0) write(k, s);
+    }
+    touched.clear();
   };
   const double ps = period_.to_seconds() * 1e12;
   auto time_of = [&](uint64_t cycle) { return uint64_t(std::llround(double(cycle) * ps)); };
   vcd << "#0\n$dumpvars\n0" << vcd_id(0) << "\n";
   dump(true);
   vcd << "$end\n";
-  std::vector<Event>& events = events_;  // sorted in place: a trace may be large
+  std::vector<Event> events;  // three a record: its pixel, its handshake, then gone
+  events.reserve(records_list_.size() * 3);
+  for (uint32_t k = 0; k < records_list_.size(); ++k) {
+    const Record& r = records_list_[k];
+    events.push_back({r.valid, 1, k}), events.push_back({r.handed, 2, k}), events.push_back({r.handed + 1, 0, k});
+  }
   std::sort(events.begin(), events.end());
   for (size_t e = 0; e < events.size();) {
     const uint64_t cycle = events[e].cycle;
     for (; e < events.size() && events[e].cycle == cycle; ++e) {
-      const Event& ev = events[e];
-      std::vector<Signal>& s = signals[size_t(ev.probe)];
-      if (ev.kind == 0) {  // not valid: the integers x, the reals hold (valid qualifies them)
-        s[0].value = s[1].value = 0;
+      const Record& r = records_list_[events[e].record];
+      std::vector<Signal>& s = signals[size_t(r.probe)];
+      if (events[e].kind == 0) {  // not valid: the integers x, the reals hold (valid qualifies them)
+        set(r.probe, 0, 0), set(r.probe, 1, 0);
         for (size_t k = 2; k < s.size(); ++k)
-          if (!s[k].real) s[k].value = kUnknown;
-      } else if (ev.kind == 2) {
-        s[1].value = 1;
+          if (!s[k].real) set(r.probe, k, kUnknown);
+      } else if (events[e].kind == 2) {
+        set(r.probe, 1, 1);
       } else {
-        s[0].value = 1, s[2].value = ev.x, s[3].value = ev.y, s[4].value = ev.triangle;
-        for (size_t k = 0; k < value_count_[size_t(ev.probe)]; ++k) s[5 + k].value = ev.values[k];
+        set(r.probe, 0, 1), set(r.probe, 2, r.x), set(r.probe, 3, r.y), set(r.probe, 4, r.triangle);
+        for (size_t k = 0; k < value_count_[size_t(r.probe)]; ++k) set(r.probe, 5 + k, r.values[k]);
       }
     }
     if (cycle == 0) {

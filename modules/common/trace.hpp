@@ -60,17 +60,21 @@ class Tracer {
 
  private:
   static constexpr int kMaxValues = 8;  // per probe
-  struct Event {
-    uint64_t cycle;
-    int kind;  // 0 clears valid and ready, 1 sets a pixel (after a clear at the same cycle), 2 sets ready
-    uint64_t seq;
+  struct Record {  // a pixel at a probe's output
+    uint64_t valid, handed;
     int probe, x, y;
     uint32_t triangle;
     std::array<double, kMaxValues> values;
+  };
+  // A change of a probe's signals, for the VCD: at `cycle`, by `kind`: 0 clears valid
+  // and ready, 1 sets a record's pixel (after a clear at the same cycle), 2 sets ready.
+  struct Event {
+    uint64_t cycle;
+    uint32_t kind, record;  // (record: also the order among equals)
     bool operator<(const Event& o) const {
       if (cycle != o.cycle) return cycle < o.cycle;
       if (kind != o.kind) return kind < o.kind;
-      return seq < o.seq;
+      return record < o.record;
     }
   };
 
@@ -78,7 +82,7 @@ class Tracer {
   sc_core::sc_time period_;
   std::vector<size_t> value_count_;  // per probe
   std::vector<ProbeInfo> info_;
-  std::vector<Event> events_;
+  std::vector<Record> records_list_;  // in the order recorded
   uint64_t records_ = 0, first_ = 0, last_ = 0;
 };
 

@@ -163,6 +163,10 @@ class Top : public sc_core::sc_module {
       modules_[i]->keep_histogram(inspect.bin_cycles > 0 ? inspect.bin_cycles : timeline ? kTimelineBin : 0);
       if (kTracing && (tracer_ || timeline) && i >= 1 && i <= line.size()) line_->watch(modules_[i].get());
     }
+    // Waveforms of a region alone: the other packets need no times (the timeline's FIFO
+    // counters need every packet's).
+    if (tracer_ && !timeline && inspect.region_given)
+      line_->watch_only([this](const SpanPacket& p) { return region_.covers(p.y, p.x0, p.x0 + p.count, p.tri->id); });
   }
   const PixelLine& line() const { return *line_; }
   TimingLog* log() const { return log_.get(); }
