@@ -18,6 +18,10 @@ struct Command {
   std::function<int()> run;  // runs it once parsed; returns the exit code
 };
 
+// For a command line CLI11 refused: "unknown command 'rendr': did you mean 'render'?" when
+// a subcommand or option is a typo away from one it has ("" otherwise).
+std::string suggestion(const CLI::App& app, int argc, char** argv);
+
 Command add_render_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_reference_command(CLI::App& app);
@@ -34,6 +38,7 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
 CLI::Validator finite_in(double min, double max);
 // A path or text option: if given, not empty (an empty one would be taken as not given).
 extern const CLI::Validator kNotEmpty;
+extern const CLI::Validator kPngPath;  // ends in .png
 
 // Shared by the rendering commands.
 struct SceneOptions {

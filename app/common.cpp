@@ -1,6 +1,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -102,6 +103,16 @@ bool same_file(const std::string& a, const std::string& b) {
 
 const CLI::Validator kNotEmpty([](std::string& text) { return text.empty() ? std::string("is empty") : std::string(); },
                                 "NOT EMPTY");
+
+// A PNG output names itself .png: a preview written as PNG into p.jpg would mislead
+// whatever opens it by its extension.
+const CLI::Validator kPngPath(
+    [](std::string& text) {
+      std::string end = text.size() >= 4 ? text.substr(text.size() - 4) : "";
+      for (char& c : end) c = char(std::tolower(static_cast<unsigned char>(c)));
+      return end == ".png" ? std::string() : "is written as PNG: give a path ending in .png";
+    },
+    "FILE.png");
 
 CLI::Validator finite_in(double min, double max) {
   return CLI::Validator(

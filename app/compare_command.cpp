@@ -35,7 +35,7 @@ Command add_compare_command(CLI::App& app) {
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
-      "compare", "compare two EXR frames per layer (B is the reference); exit 0 pass, 2 fail");
+      "compare", "compare two EXR frames per layer (B is the reference); exit 0 pass, 1 fail, 2 trouble");
   cmd->add_option("a", opt->a, "frame under test")->required();
   cmd->add_option("b", opt->b, "reference frame")->required();
   cmd->add_option("--layer", opt->compare.layers, "layers to compare (default: all present)")
@@ -68,6 +68,10 @@ Command add_compare_command(CLI::App& app) {
                 if (!frame->find("R") || !frame->find("G") || !frame->find("B"))
                   throw core::InputError(file, "--images", "the frame has no R, G, B channels to draw");
             const core::CompareResult r = core::compare_frames(a, b, opt->compare);
+            if (!r.problem.empty()) {  // not comparable: trouble, as a missing file is
+              std::cerr << "shadetlm: compare " << opt->a << " " << opt->b << ": " << r.problem << "\n";
+              return 2;
+            }
             if (opt->json) {
               std::cout << r.to_json().dump(2) << "\n";
             } else {
@@ -75,11 +79,11 @@ Command add_compare_command(CLI::App& app) {
               std::cout << r.verdict() << "\n";
             }
             core::OutputSet outputs;  // the difference and the images together, or none
-            if (!opt->diff.empty() && r.problem.empty())
+            if (!opt->diff.empty())
               add_frame(outputs, core::difference_frame(a, b, r), opt->diff, "");
-            if (!p.empty() && r.problem.empty()) core::add_comparison_images(outputs, p, a, b, opt->compare.fail);
+            if (!p.empty()) core::add_comparison_images(outputs, p, a, b, opt->compare.fail);
             outputs.commit();
-            return r.pass ? 0 : 2;
+            return r.pass ? 0 : 1;  // (as diff, cmp and idiff: 1 different, 2 trouble)
           }};
 }
 

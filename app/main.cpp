@@ -40,6 +40,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() != 0)
+      if (const std::string hint = app::suggestion(app, argc, argv); !hint.empty()) {
+        std::cerr << "shadetlm: " << hint << "\n";
+        return 2;
+      }
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "app/commands.hpp"
+#include "shadetlm/core/compare.hpp"
 #include "shadetlm/reference/reference.hpp"
 
 namespace shadetlm::app {
@@ -18,8 +19,9 @@ Command add_reference_command(CLI::App& app) {
   opt->scene.add_to(*cmd);
   cmd->add_option("-o,--output", opt->output, "EXR frame to write")->capture_default_str()
       ->check(kNotEmpty);
-  cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview")
-      ->check(kNotEmpty);
+  cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview (FILE.png)")
+      ->check(kNotEmpty)
+      ->check(kPngPath);
   cmd->add_flag("--allow-nonfinite", opt->allow_nonfinite,
                 "exit 0 even when NaN or infinite values reached the frame (written as 0; else exit status 3)");
   return {cmd, [opt]() {
@@ -38,7 +40,7 @@ Command add_reference_command(CLI::App& app) {
             size_t covered = 0;
             for (double a : image.alpha) covered += a > 0;
             std::cout << "reference: " << scene.file << ", " << image.width << "x" << image.height
-                      << ", " << covered << " covered pixels, " << seconds << " s\n"
+                      << ", " << covered << " pixels covered, " << core::figure(seconds) << " s\n"
                       << "  wrote " << opt->output << (opt->preview.empty() ? "" : " and " + opt->preview)
                       << "\n";
             return nonfinite_status(replaced, opt->allow_nonfinite);

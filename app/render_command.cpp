@@ -222,9 +222,19 @@ modules::RenderResult render_with_progress(const core::Scene& scene, const std::
 
 // The run's statistics: the engine's, the scene and its resolved configuration, and with
 // --compare-reference the error against the golden model (whose time goes to *reference_s).
+// The pixels the frame covers (A > 0), each once: beside the shaded ones, which count
+// every pixel as often as it was shaded (overdraw).
+uint64_t covered_pixels(const core::Frame& frame) {
+  uint64_t covered = 0;
+  if (const auto* a = frame.find("A"))
+    for (float v : a->values) covered += v > 0;
+  return covered;
+}
+
 nlohmann::json statistics_of(const RenderOptions& opt, const modules::RenderResult& r, const core::Scene& scene,
                              double* reference_s) {
   nlohmann::json stats = r.stats_json();
+  stats["pixels"]["covered"] = covered_pixels(r.frame);  // (shaded counts overdraw; covered, the frame's)
   stats["scene"] = scene.file;
   stats["config"] = settings_of(scene).resolved();
   if (opt.compare) stats["error"] = error_against_reference(r.frame, scene, reference_s);
@@ -270,11 +280,12 @@ void print_error(const nlohmann::json& e, double reference_s) {
 void print_summary(const RenderOptions& opt, const core::Scene& scene, const modules::RenderResult& r,
                    const nlohmann::json& stats, const modules::Inspect& inspect, double reference_s) {
   std::cout << "render (" << r.engine << "): " << scene.file << ", " << scene.camera.width << "x"
-            << scene.camera.height << ", " << r.triangles_drawn << " triangles, " << r.pixels_shaded
-            << " shaded pixels, " << r.wall_s << " s\n";
+            << scene.camera.height << ", " << r.triangles_drawn << " of " << r.triangles_in << " triangles drawn, "
+            << r.pixels_shaded << " pixels shaded (overdraw counted), " << stats["pixels"]["covered"].get<uint64_t>()
+            << " covered, " << core::figure(r.wall_s) << " s\n";
   if (r.frame_cycles > 0)
-    std::cout << "  " << r.frame_cycles << " cycles at " << r.clock_mhz << " MHz ("
-              << stats["sim_time_s"].get<double>() * 1e3 << " ms simulated), bottleneck "
+    std::cout << "  " << r.frame_cycles << " cycles at " << core::figure(r.clock_mhz) << " MHz ("
+              << core::figure(stats["sim_time_s"].get<double>() * 1e3) << " ms simulated), bottleneck "
               << stats["bottleneck"].get<std::string>() << "\n";
   if (opt.compare) print_error(stats["error"], reference_s);
   if (!inspect.vcd.empty())
@@ -296,11 +307,13 @@ Command add_render_command(CLI::App& app) {
   opt->scene.add_to(*cmd);
   cmd->add_option("-o,--output", opt->output, "EXR frame to write")->capture_default_str()
       ->check(kNotEmpty);
-  cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview")
-      ->check(kNotEmpty);
+  cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview (FILE.png)")
+      ->check(kNotEmpty)
+      ->check(kPngPath);
   cmd->add_option("--heat-map", opt->heat_map,
                   "write the parallax iterations per pixel as a heat map PNG (black 0 … white --heat-max and more)")
-      ->check(kNotEmpty);
+      ->check(kNotEmpty)
+      ->check(kPngPath);
   cmd->add_option("--heat-max", opt->heat_max, "iterations shown white in the heat map")
       ->capture_default_str()
       ->check(finite_in(1.0, 1e6));

@@ -61,7 +61,7 @@ count() {  # count LABEL SCENE RESOLUTION
       "$bin" render "$file" -o "$tmp/f.exr" --engine $engine --set "camera.resolution=$res" "${extra[@]}" \
       >"$tmp/out.$engine" 2>"$tmp/err.$engine" || { cat "$tmp/err.$engine" >&2; exit 1; }
     ir=$(sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$tmp/cg.$engine")
-    pixels=$(sed -n 's/.* \([0-9]*\) shaded pixels.*/\1/p' "$tmp/out.$engine")
+    pixels=$(sed -n 's/.* \([0-9]*\) pixels shaded.*/\1/p' "$tmp/out.$engine")
     awk -v l="$label" -v e=$engine -v ir="$ir" -v px="$pixels" \
       'BEGIN { printf "  %-44s %-8s %11.0f instructions / %7d shaded pixels = %6.1f\n", l, e, ir, px, ir / px }'
   done
@@ -115,7 +115,7 @@ off=$(instructions "$bin" --set 'camera.resolution=[480,270]')
 none=$(instructions "$notrace/app/shadetlm" --set 'camera.resolution=[480,270]')
 awk -v a="$off" -v b="$none" 'BEGIN { printf "  compiled in but off / compiled out (instructions, 480x270): %d / %d = %.4f (goal <= 1.02)\n", a, b, a / b }'
 seconds() {  # best of three wall times of the SystemC render, from its own report
-  for i in 1 2 3; do "$bin" render "$scene" -o "$tmp/t.exr" "$@" | sed -n 's/.* pixels, \([0-9.e-]*\) s$/\1/p'; done | sort -g | head -1
+  for i in 1 2 3; do "$bin" render "$scene" -o "$tmp/t.exr" "$@" | sed -n 's/.* covered, \([0-9.e-]*\) s$/\1/p'; done | sort -g | head -1
 }
 plain=$(seconds)
 # A 64×64 region at the centre of the scene's frame.

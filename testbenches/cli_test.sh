@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The command line as a user meets it: exit codes (0 ok, 2 bad input or failed
-# comparison), messages that name the file and the field, and no output file when
+# The command line as a user meets it: exit codes (0 ok, 1 frames differ, 2 bad input),
+# messages that name the file and the field, and no output file when
 # the input is bad. Usage: cli_test.sh SHADETLM SOURCE_DIR
 set -u
 bin=$1
@@ -37,12 +37,12 @@ expect_output same PASS
 
 # A different frame of the same scene: brighter light.
 check brighter 0 "$bin" reference -o "$tmp/bright.exr" --set lights.0.intensity=2
-check differs 2 "$bin" compare "$tmp/bright.exr" "$tmp/demo.exr" --diff "$tmp/diff.exr"
+check differs 1 "$bin" compare "$tmp/bright.exr" "$tmp/demo.exr" --diff "$tmp/diff.exr"
 expect_output differs FAIL
 [[ -s $tmp/diff.exr ]] && ((passes++)) || { echo "FAIL differs: no diff frame"; ((failures++)); }
 check tolerated 0 "$bin" compare "$tmp/bright.exr" "$tmp/demo.exr" --layer Z --layer N
 check tolerant 0 "$bin" compare "$tmp/bright.exr" "$tmp/demo.exr" --failpercent 100
-check json 2 "$bin" compare "$tmp/bright.exr" "$tmp/demo.exr" --json
+check json 1 "$bin" compare "$tmp/bright.exr" "$tmp/demo.exr" --json
 expect_output json '"psnr"'
 
 # Bad input: exit 2, the file and field named, nothing written.
@@ -66,6 +66,18 @@ check negative-threshold 2 "$bin" compare "$tmp/bright.exr" "$tmp/demo.exr" --ha
 # An override before the scene leaves the scene a scene.
 check set-then-scene 0 "$bin" reference --set camera.resolution=[32,24] "$src/scenes/knot.json" -o "$tmp/k.exr"
 check bad-option 2 "$bin" reference --frobnicate
+check typo-command 2 "$bin" rendr
+expect_output typo-command "did you mean 'render'"
+check typo-subcommand 2 "$bin" precompute normalmp
+expect_output typo-subcommand "did you mean 'normalmap'"
+check typo-option 2 "$bin" render --vdc "$tmp/t.vcd"
+expect_output typo-option "did you mean --vcd"
+# Frames that cannot be compared are trouble (2), said on stderr; a difference is 1.
+check small 0 "$bin" reference -o "$tmp/small.exr" --set camera.resolution=[32,24]
+check other-resolution 2 "$bin" compare "$tmp/small.exr" "$tmp/demo.exr"
+expect_output other-resolution "resolutions differ"
+[[ -z $("$bin" compare "$tmp/small.exr" "$tmp/demo.exr" 2>/dev/null) ]] && ((passes++)) ||
+  { echo "FAIL other-resolution: a message on stdout"; ((failures++)); }
 check no-command 2 "$bin"
 
 # The SystemC pipeline: frame, preview and statistics, the same frame as the kernel

@@ -324,7 +324,7 @@ collision() {  # collision NAME "OPTIONS..." COMMAND...: run in x, rejected nami
   end
 }
 collision output-is-the-scene --output "$bin" render s.json -o s.json
-collision preview-is-the-output "--preview --output" "$bin" render s.json -o x.exr --preview x.exr
+collision preview-is-the-output "--preview --output" "$bin" render s.json -o x.png --preview x.png  # (the preview must end in .png)
 collision stats-is-the-output "--stats --output" "$bin" render s.json -o x.exr --stats x.exr
 collision heat-map-is-the-preview "--heat-map --preview" \
   "$bin" render "$parallax" "${small[@]}" -o out.exr --preview x.png --heat-map x.png
@@ -338,7 +338,7 @@ collision output-folder-is-a-file --output "$bin" render s.json -o plain/x.exr
 collision output-empty --output "$bin" render s.json -o ''
 collision rejected-scene-makes-no-folder camera.fov_y "$bin" render s.json --set camera.fov_y=500 -o newdir/x.exr
 collision rejected-collision-makes-no-folder "--preview --output" \
-  "$bin" render s.json -o newdir/x.exr --preview newdir/x.exr
+  "$bin" render s.json -o newdir/x.png --preview newdir/x.png
 collision missing-scene-makes-no-folder missing.json "$bin" render missing.json -o newdir/x.exr
 
 echo "$passes passed, $failures failed"

@@ -855,11 +855,11 @@ hostile -u tri.obj normalmap-over-surface "--output" S precompute normalmap h16.
 hostile -u a.exr compare-diff-is-a "--diff" S compare a.exr b.exr --diff a.exr
 hostile -u b.exr compare-diff-is-b "--diff" S compare a.exr b.exr --diff b.exr
 hostile -u a.exr compare-images-under-file "--images" S compare a.exr b.exr --images a.exr/x
-hostile -x x.exr output-equals-preview "--preview" S render base.json -o x.exr --preview x.exr
+hostile -x x.png output-equals-preview "--preview" S render base.json -o x.png --preview x.png
 hostile -x x.exr output-equals-stats "--stats" S render base.json -o x.exr --stats ./x.exr
 hostile -x x.png preview-equals-heat-map "--heat-map" S render pb.json -o out.exr --preview x.png --heat-map x.png
 hostile -x x.json stats-equals-timeline "--timeline" render base.json --stats x.json --timeline x.json
-hostile -x x.exr reference-output-equals-preview "--preview" S reference base.json -o x.exr --preview x.exr
+hostile -x x.png reference-output-equals-preview "--preview" S reference base.json -o x.png --preview x.png
 mkdir -p dir.exr dir.png dir.json dir.log
 hostile reference-output-folder "--output" S reference base.json -o dir.exr
 hostile preview-folder "--preview" S render base.json -o out.exr --preview dir.png
