@@ -11,6 +11,12 @@
 namespace shadetlm::app {
 
 namespace {
+struct Options {
+  std::string a, b, diff, images;
+  core::CompareOptions compare;
+  bool json = false;
+};
+
 // Per layer: the figures over the covered pixels, then the frame-wide ones, then the verdict's count.
 void print_figures(const core::CompareResult& r, double fail) {
   using core::figure;
@@ -25,14 +31,40 @@ void print_figures(const core::CompareResult& r, double fail) {
               << ", psnr " << figure(m.frame_psnr) << " dB; " << figure(m.over_percent) << " % of the frame's pixels over "
               << figure(fail) << (m.pass ? "" : "  FAIL") << "\n";
 }
+// Compares, writes the difference and images, then prints the figures and verdict.
+int run_compare(const Options& opt) {
+  const core::Frame a = core::read_exr(opt.a), b = core::read_exr(opt.b);
+  const std::string& p = opt.images;
+  check_outputs({{"--diff", opt.diff},
+                 {"--images", p.empty() ? "" : p + "-new.png"},
+                 {"--images", p.empty() ? "" : p + "-reference.png"},
+                 {"--images", p.empty() ? "" : p + "-diff.png"},
+                 {"--images", p.empty() ? "" : p + "-heat.png"}},
+                {opt.a, opt.b});
+  if (!p.empty())
+    for (const auto& [file, frame] : {std::pair{opt.a, &a}, std::pair{opt.b, &b}})
+      if (!frame->find("R") || !frame->find("G") || !frame->find("B"))
+        throw core::InputError(file, "--images", "the frame has no R, G, B channels to draw");
+  const core::CompareResult r = core::compare_frames(a, b, opt.compare);
+  if (!r.problem.empty()) {  // not comparable: trouble, as a missing file is
+    std::cerr << "shadetlm: compare " << opt.a << " " << opt.b << ": " << r.problem << "\n";
+    return 2;
+  }
+  core::OutputSet outputs;  // the difference and the images together, or none, before the verdict
+  if (!opt.diff.empty()) add_frame(outputs, core::difference_frame(a, b, r), opt.diff, "");
+  if (!p.empty()) core::add_comparison_images(outputs, p, a, b, opt.compare.fail);
+  outputs.commit();
+  if (opt.json) {
+    std::cout << r.to_json().dump(2) << "\n";
+  } else {
+    print_figures(r, opt.compare.fail);
+    std::cout << r.verdict() << "\n";
+  }
+  return r.pass ? 0 : 1;  // (as diff, cmp and idiff: 1 different, 2 trouble)
+}
 }  // namespace
 
 Command add_compare_command(CLI::App& app) {
-  struct Options {
-    std::string a, b, diff, images;
-    core::CompareOptions compare;
-    bool json = false;
-  };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "compare", "compare two EXR frames per layer (B is the reference); exit 0 pass, 1 fail, 2 trouble");
@@ -55,35 +87,14 @@ Command add_compare_command(CLI::App& app) {
                   "write PREFIX-new.png, -reference.png, -diff.png (|A-B| x16) and -heat.png (error heat map)")
       ->check(kNotEmpty);
   return {cmd, [opt]() {
-            const core::Frame a = core::read_exr(opt->a), b = core::read_exr(opt->b);
-            const std::string& p = opt->images;
-            check_outputs({{"--diff", opt->diff},
-                           {"--images", p.empty() ? "" : p + "-new.png"},
-                           {"--images", p.empty() ? "" : p + "-reference.png"},
-                           {"--images", p.empty() ? "" : p + "-diff.png"},
-                           {"--images", p.empty() ? "" : p + "-heat.png"}},
-                          {opt->a, opt->b});
-            if (!p.empty())
-              for (const auto& [file, frame] : {std::pair{opt->a, &a}, std::pair{opt->b, &b}})
-                if (!frame->find("R") || !frame->find("G") || !frame->find("B"))
-                  throw core::InputError(file, "--images", "the frame has no R, G, B channels to draw");
-            const core::CompareResult r = core::compare_frames(a, b, opt->compare);
-            if (!r.problem.empty()) {  // not comparable: trouble, as a missing file is
-              std::cerr << "shadetlm: compare " << opt->a << " " << opt->b << ": " << r.problem << "\n";
+            try {
+              return run_compare(*opt);
+            } catch (const core::InputError&) {
+              throw;  // bad input: exit 2, from main
+            } catch (const std::exception& e) {  // a failed write, an allocation: trouble, never "different"
+              std::cerr << "shadetlm: compare: " << e.what() << "\n";
               return 2;
             }
-            if (opt->json) {
-              std::cout << r.to_json().dump(2) << "\n";
-            } else {
-              print_figures(r, opt->compare.fail);
-              std::cout << r.verdict() << "\n";
-            }
-            core::OutputSet outputs;  // the difference and the images together, or none
-            if (!opt->diff.empty())
-              add_frame(outputs, core::difference_frame(a, b, r), opt->diff, "");
-            if (!p.empty()) core::add_comparison_images(outputs, p, a, b, opt->compare.fail);
-            outputs.commit();
-            return r.pass ? 0 : 1;  // (as diff, cmp and idiff: 1 different, 2 trouble)
           }};
 }
 

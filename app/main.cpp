@@ -40,7 +40,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() != 0)
+    // Arguments left over, or no subcommand: perhaps a typo of one it has.
+    const bool typo = dynamic_cast<const CLI::ExtrasError*>(&e) || dynamic_cast<const CLI::RequiredError*>(&e);
+    if (typo)
       if (const std::string hint = app::suggestion(app, argc, argv); !hint.empty()) {
         std::cerr << "shadetlm: " << hint << "\n";
         return 2;

@@ -14,6 +14,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.hpp"
+#include "app/progress.hpp"
+#include "shadetlm/core/compare.hpp"
 #include "shadetlm/core/memory_budget.hpp"
 #include "shadetlm/core/input_error.hpp"
 #include "shadetlm/core/parallax_map.hpp"
@@ -72,6 +74,8 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
       cmd->add_option("--levels", opt->levels, "height levels the apexes round up to (default 4·slices)")
           ->check(finite_in(1, 4096));
     runs.push_back({cmd, [opt, k]() {
+                      Progress progress("precompute " + k);
+                      progress.phase("loading the height map");
                       require_output("--output", opt->output);
                       check_outputs({{"--output", opt->output}}, {opt->height});
                       const core::Texture map = core::load_texture_file(opt->height);
@@ -80,6 +84,7 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
                       core::MemoryBudget::process().take(k == "conemap" ? volume / uint64_t(opt->slices) * 4
                                                          : volume * (k == "refinedmap" ? 2 : 1),
                                                          opt->height, "--slices");
+                      progress.phase("building the " + k);
                       const auto start = std::chrono::steady_clock::now();
                       double seconds = 0;
                       auto stamp = [&](std::map<std::string, std::string>& params) {
@@ -90,16 +95,19 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
                         core::ConeMap m = core::cone_map(f, opt->slices, opt->levels > 0 ? opt->levels : 4 * opt->slices);
                         seconds = seconds_since(start);
                         stamp(m.params);
+                        progress.phase("writing");
                         core::write_cone_map(opt->output, m);
                       } else {
                         core::VolumeMap m = core::distance_map(f, opt->slices);
                         if (k == "refinedmap") m = core::refined_map(f, m, opt->refined);
                         seconds = seconds_since(start);
                         stamp(m.params);
+                        progress.phase("writing");
                         core::write_volume_map(opt->output, m, k == "refinedmap" ? "refined" : "distance");
                       }
+                      progress.done();
                       std::cout << "precompute " << k << ": " << opt->height << " (" << f.width << "x" << f.height
-                                << "), " << opt->slices << " slices, " << seconds << " s\n  wrote " << opt->output
+                                << "), " << opt->slices << " slices, " << core::figure(seconds) << " s\n  wrote " << opt->output
                                 << " (" << std::filesystem::file_size(opt->output) << " bytes)\n";
                       return 0;
                     }});

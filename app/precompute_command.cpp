@@ -12,6 +12,8 @@
 #include <iostream>
 
 #include "app/commands.hpp"
+#include "app/progress.hpp"
+#include "shadetlm/core/compare.hpp"
 #include "shadetlm/core/bump_map.hpp"
 #include "shadetlm/core/frame.hpp"
 #include "shadetlm/core/input_error.hpp"
@@ -80,6 +82,8 @@ Command add_precompute_command(CLI::App& app) {
   return {cmd, [opt, maps]() {
             for (const auto& [sub, run] : *maps)
               if (sub->parsed()) return run();
+            Progress progress("precompute normalmap");
+            progress.phase("loading the height map");
             require_output("--output", opt->output);
             check_outputs({{"--output", opt->output}}, {opt->height, opt->surface});
             core::Texture height = core::load_texture_file(opt->height);
@@ -88,6 +92,7 @@ Command add_precompute_command(CLI::App& app) {
             const std::string form = !opt->form.empty() ? opt->form : opt->surface.empty() ? "square" : "tangent";
             if (form != "square" && opt->surface.empty())
               throw core::InputError(opt->height, "--surface", "the " + form + " form needs the surface (--surface)");
+            progress.phase("building the normal map");
             const auto start = std::chrono::steady_clock::now();
             core::Texture base;
             if (form == "square") {
@@ -100,6 +105,7 @@ Command add_precompute_command(CLI::App& app) {
             const std::vector<core::Texture> levels = core::mip_levels(base, !opt->keep_mip_lengths);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             const bool png = ends_with_png(opt->output);
+            progress.phase("writing");
             if (png) {
               core::OutputSet out;
               out.write(opt->output, normal_map_png(base));
@@ -115,10 +121,11 @@ Command add_precompute_command(CLI::App& app) {
                                    {"shadetlm:normalmap.wrap", opt->wrap},
                                    {"shadetlm:normalmap.renormalized", opt->keep_mip_lengths ? "no" : "yes"}});
             }
+            progress.done();
             std::cout << "precompute normalmap: " << opt->height << " (" << height.width << "x" << height.height
                       << "), " << form << " form, "
                       << (png ? std::string("the finest level at 8 bits") : std::to_string(levels.size() + 1) + " levels")
-                      << ", " << seconds << " s\n"
+                      << ", " << core::figure(seconds) << " s\n"
                       << "  wrote " << opt->output << "\n";
             return 0;
           }};

@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "app/commands.hpp"
+#include "app/progress.hpp"
 #include "shadetlm/core/compare.hpp"
 #include "shadetlm/reference/reference.hpp"
 
@@ -25,10 +26,13 @@ Command add_reference_command(CLI::App& app) {
   cmd->add_flag("--allow-nonfinite", opt->allow_nonfinite,
                 "exit 0 even when NaN or infinite values reached the frame (written as 0; else exit status 3)");
   return {cmd, [opt]() {
+            Progress progress("reference");
+            progress.phase("loading the scene");
             const core::Scene scene = opt->scene.load();
             require_output("--output", opt->output);
             check_outputs({{"--output", opt->output}, {"--preview", opt->preview}}, scene.inputs);
             take_run_memory(scene, false, true, 0);
+            progress.phase("golden model");
             const auto start = std::chrono::steady_clock::now();
             const reference::Image image = reference::render(scene);
             const double seconds =
@@ -36,7 +40,9 @@ Command add_reference_command(CLI::App& app) {
             core::Frame frame = reference::to_frame(image);
             const uint64_t replaced = replace_nonfinite(frame);
             describe(frame, scene, opt->scene, "reference");
+            progress.phase("writing");
             write_frame(frame, opt->output, opt->preview);
+            progress.done();
             size_t covered = 0;
             for (double a : image.alpha) covered += a > 0;
             std::cout << "reference: " << scene.file << ", " << image.width << "x" << image.height

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "app/commands.hpp"
+#include "app/progress.hpp"
 #include "shadetlm/core/compare.hpp"
 #include "shadetlm/core/input_error.hpp"
 #include "shadetlm/modules/pipeline/pipeline.hpp"
@@ -22,32 +23,6 @@ namespace shadetlm::app {
 
 namespace {
 
-// A one-line progress bar on stderr, drawn only when stderr is a terminal, at most ten
-// times a second, and only once the run has taken half a second (short renders stay quiet).
-class ProgressBar {
- public:
-  explicit ProgressBar(const char* label) : label_(label), enabled_(isatty(fileno(stderr)) != 0) {}
-  bool enabled() const { return enabled_; }
-  void show(double share) {
-    const auto now = std::chrono::steady_clock::now();
-    if (now - start_ < std::chrono::milliseconds(500) || now - last_ < std::chrono::milliseconds(100)) return;
-    last_ = now;
-    const int filled = int(std::lround(std::clamp(share, 0.0, 1.0) * 30));
-    std::fprintf(stderr, "\r%s [%s%s] %3d %%", label_, std::string(size_t(filled), '#').c_str(),
-                 std::string(size_t(30 - filled), ' ').c_str(), int(std::lround(share * 100)));
-    drawn_ = true;
-  }
-  void done() {
-    if (drawn_) std::fprintf(stderr, "\r%s\r", std::string(50, ' ').c_str());
-    drawn_ = false;
-  }
-  ~ProgressBar() { done(); }  // also when the render throws: the message starts on a clean line
-
- private:
-  const char* label_;
-  bool enabled_, drawn_ = false;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
-};
 // Error of the pipeline's frame against the golden model's, per layer (over the pixels
 // covered in either frame, and frame-wide), the coverage, and the truth the model used.
 nlohmann::json error_against_reference(const core::Frame& frame, const core::Scene& scene, double* reference_s) {
@@ -208,16 +183,12 @@ void take_back_inspection(const modules::Inspect& inspect) {
     for (const auto& f : modules::vector_files(modules::standard_pipeline(), inspect.vectors)) core::remove_quietly(f);
 }
 
-// Renders the scene on the engine named ("loop" or "systemc"), showing progress meanwhile.
+// Renders the scene on the engine named ("loop" or "systemc"), its share done shown.
 modules::RenderResult render_with_progress(const core::Scene& scene, const std::string& engine,
-                                           modules::Inspect inspect) {
-  // A progress bar on stderr, only when it is a terminal (and the render is long).
-  ProgressBar bar("render");
-  if (bar.enabled()) inspect.progress = [&](double share) { bar.show(share); };
-  modules::RenderResult r =
-      engine == "loop" ? modules::render_loop(scene, inspect) : modules::render_systemc(scene, inspect);
-  bar.done();
-  return r;
+                                           modules::Inspect inspect, Progress& progress) {
+  progress.phase("pipeline");
+  if (progress.enabled()) inspect.progress = [&](double share) { progress.share(share); };
+  return engine == "loop" ? modules::render_loop(scene, inspect) : modules::render_systemc(scene, inspect);
 }
 
 // The run's statistics: the engine's, the scene and its resolved configuration, and with
@@ -342,14 +313,19 @@ Command add_render_command(CLI::App& app) {
                   "every pixel's start and hand-over cycle at every block, for `shadetlm timing-check`")
       ->check(kNotEmpty);
   return {cmd, [opt]() {
+            Progress progress("render");
+            progress.phase("loading the scene");
             const core::Scene scene = opt->scene.load();
             const modules::Inspect inspect = inspection_of(*opt, scene);
             check_before_simulation(*opt, scene, inspect);
-            modules::RenderResult r = render_with_progress(scene, opt->engine, inspect);
+            modules::RenderResult r = render_with_progress(scene, opt->engine, inspect, progress);
             double reference_s = 0;
+            progress.phase(opt->compare ? "golden model" : "statistics");
             const nlohmann::json stats = statistics_of(*opt, r, scene, &reference_s);
             describe(r.frame, scene, opt->scene, opt->engine == "loop" ? "pipeline-loop" : "pipeline");
+            progress.phase("writing");
             write_outputs(*opt, r, stats, inspect);
+            progress.done();
             print_summary(*opt, scene, r, stats, inspect, reference_s);
             return nonfinite_status(r.nonfinite_replaced, opt->allow_nonfinite);
           }};

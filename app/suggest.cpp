@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "app/commands.hpp"
+#include "shadetlm/core/input_error.hpp"
 
 namespace shadetlm::app {
 
@@ -49,7 +50,7 @@ std::string suggestion(const CLI::App& top, int argc, char** argv) {
   const CLI::App* app = &top;
   bool skip_value = false;  // the token after an option that takes one
   for (int k = 1; k < argc; ++k) {
-    const std::string token = argv[k];
+    const std::string token = argv[k], shown = core::printable(token, 60);  // (echoed: no control bytes)
     if (skip_value) {
       skip_value = false;
       continue;
@@ -59,7 +60,7 @@ std::string suggestion(const CLI::App& top, int argc, char** argv) {
       std::vector<std::string> known = option_names(app);
       if (std::find(known.begin(), known.end(), name) == known.end()) {
         const std::string near = nearest(name, known);
-        return near.empty() ? "" : "unknown option " + name + " of `" + app->get_name() + "`: did you mean " + near + "?";
+        return near.empty() ? "" : "unknown option " + core::printable(name, 60) + " of `" + app->get_name() + "`: did you mean " + near + "?";
       }
       const CLI::Option* o = app->get_option_no_throw(name);
       for (const CLI::App* a = app; !o && a->get_parent(); a = a->get_parent()) o = a->get_parent()->get_option_no_throw(name);
@@ -78,10 +79,10 @@ std::string suggestion(const CLI::App& top, int argc, char** argv) {
       continue;
     }
     const std::string near = nearest(token, subcommands);
-    if (!near.empty()) return "unknown command '" + token + "': did you mean '" + near + "'?";
+    if (!near.empty()) return "unknown command '" + shown + "': did you mean '" + near + "'?";
     std::string all;
     for (const auto& n : subcommands) all += (all.empty() ? "" : ", ") + n;
-    return "unknown command '" + token + "' (the commands: " + all + ")";
+    return "unknown command '" + shown + "' (the commands: " + all + ")";
   }
   return "";
 }

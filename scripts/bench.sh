@@ -114,15 +114,7 @@ instructions() {  # instructions BINARY ARGS...: callgrind's count inside the Sy
 off=$(instructions "$bin" --set 'camera.resolution=[480,270]')
 none=$(instructions "$notrace/app/shadetlm" --set 'camera.resolution=[480,270]')
 awk -v a="$off" -v b="$none" 'BEGIN { printf "  compiled in but off / compiled out (instructions, 480x270): %d / %d = %.4f (goal <= 1.02)\n", a, b, a / b }'
-seconds() {  # best of three wall times of the SystemC render, from its own report
-  for i in 1 2 3; do "$bin" render "$scene" -o "$tmp/t.exr" "$@" | sed -n 's/.* covered, \([0-9.e-]*\) s$/\1/p'; done | sort -g | head -1
-}
-plain=$(seconds)
-# A 64×64 region at the centre of the scene's frame.
-read -r width height < <("$bin" render "$scene" -o "$tmp/t.exr" | sed -n 's/.*, \([0-9]*\)x\([0-9]*\), .*/\1 \2/p')
-x0=$((width / 2 - 32)) y0=$((height / 2 - 32))
-traced=$(seconds --vcd "$tmp/t.vcd" --trace-region $x0,$y0,$((x0 + 63)),$((y0 + 63)))
-awk -v a="$traced" -v b="$plain" 'BEGIN { printf "  64x64 region of 1920x1080 traced / untraced (wall, best of 3): %.4f s / %.4f s = %.3f (goal <= 2)\n", a, b, a / b }'
+"$root/scripts/trace-cost.sh" "$bin" "$scene" 3
 
 echo
 echo "== number types: the datapaths' Fixed against SystemC's sc_fix_fast (one run) =="

@@ -135,8 +135,9 @@ full_disk disk-parallax-bench-json 1000 pb.json \
 
 # --- 3. SIGINT and SIGTERM during a long render: the process ends by the signal, no
 # temporary remains, and each output either does not exist or is whole.
-long=(render --set 'camera.resolution=[1920,1080]' -o out.exr --preview out.png --stats out.json
-  --vcd out.vcd --trace-region 800,400,1100,700)
+# (Long enough that a signal at 4 s finds it running: the golden model too, at 1440p.)
+long=(render --set 'camera.resolution=[2560,1440]' -o out.exr --preview out.png --stats out.json
+  --vcd out.vcd --trace-region 800,400,1100,700 --compare-reference)
 long_outputs="out.exr out.png out.json out.vcd out.gtkw"
 # The whole outputs, from an uninterrupted run in a folder of the same name (k).
 fresh k

@@ -826,7 +826,7 @@ hostile precompute-form "--form" S precompute normalmap h16.png -o out.exr --for
 hostile precompute-wrap "--wrap" S precompute normalmap h16.png -o out.exr --wrap mirror
 hostile unknown-option "--no-such-option" render base.json --no-such-option
 # (CLI11 says a subcommand is required; it does not name the word it did not know)
-hostile precompute-unknown-map "subcommand" S precompute bogusmap h16.png -o out.exr
+hostile precompute-unknown-map "unknown command 'bogusmap'" S precompute bogusmap h16.png -o out.exr
 
 # ------------------------------------------------------------------------------------------
 # 5. Outputs: equal to an input, to each other, a folder, under a regular file

@@ -109,6 +109,8 @@ TEST_CASE("the timeline: a slice per packet, named by what it carries, flows acr
   std::map<int, uint64_t> slices, slice_end;
   std::map<std::string, uint64_t> counters;  // samples per counter
   std::map<uint64_t, std::vector<int>> flows;  // per flow id, its tracks in order
+  std::map<uint64_t, std::set<int>> packet_tracks;  // per slice's packet argument, its tracks
+  std::map<std::string, double> waited;  // per FIFO counter: Σ mean occupancy × bin cycles
   for (const auto& e : j.at("traceEvents")) {
     if (e.at("ph") == "M" && e.at("name") == "thread_name") track[e.at("tid")] = e.at("args").at("name");
     if (e.contains("ts")) CHECK(e.at("ts").is_number_unsigned());  // integer cycles
@@ -117,6 +119,7 @@ TEST_CASE("the timeline: a slice per packet, named by what it carries, flows acr
       const nlohmann::json& v = e.at("args");
       if (v.contains("pixels")) CHECK(v.at("pixels").get<double>() <= 8);  // the default FIFO depth
       if (v.contains("percent")) CHECK(v.at("percent").get<double>() <= 100);
+      if (v.contains("pixels")) waited[e.at("name")] += v.at("pixels").get<double>() * v.at("cycles").get<double>();
     }
     if (e.at("ph") == "X") {
       const int tid = e.at("tid");
@@ -127,7 +130,10 @@ TEST_CASE("the timeline: a slice per packet, named by what it carries, flows acr
       const nlohmann::json& a = e.at("args");
       const std::string name = e.at("name");
       CHECK(name.rfind("tri " + std::to_string(a.at("triangle").get<uint32_t>()), 0) == 0);
-      if (tid >= 1) CHECK(name.find(std::to_string(a.at("pixels").get<int>()) + " px") != std::string::npos);
+      if (tid >= 1) {
+        CHECK(name.find(std::to_string(a.at("pixels").get<int>()) + " px") != std::string::npos);
+        packet_tracks[a.at("packet")].insert(tid);
+      }
     }
     if (e.at("ph") == "s" || e.at("ph") == "t" || e.at("ph") == "f") flows[e.at("id")].push_back(e.at("tid"));
   }
@@ -139,13 +145,18 @@ TEST_CASE("the timeline: a slice per packet, named by what it carries, flows acr
     const uint64_t expected = b < 1 ? r.triangles_drawn : r.blocks[b].stats.packets;
     CHECK(slices[int(b)] == expected);
     CHECK(counters[r.blocks[b].name + " utilization"] > 0);
-    if (b >= 2) CHECK(counters[r.blocks[b].name + " FIFO"] > 0);
+    if (b >= 2) {  // the FIFO counter holds every cycle a pixel waited in it, as the stats count them
+      CHECK(counters[r.blocks[b].name + " FIFO"] > 0);
+      CHECK(waited[r.blocks[b].name + " FIFO"] == Approx(double(r.blocks[b].stats.fifo_cycles)).epsilon(1e-9));
+    }
   }
   // One flow a packet, from the raster through every span block, in pipeline order.
   CHECK(flows.size() == r.blocks[1].stats.packets);
   for (const auto& [id, tracks] : flows) {
     CHECK(tracks.front() == 1);
     CHECK(std::is_sorted(tracks.begin(), tracks.end()));
+    // The slices' packet argument names the same packet as the flow's id.
+    CHECK(std::set<int>(tracks.begin(), tracks.end()) == packet_tracks[id]);
   }
 }
 

@@ -98,12 +98,12 @@ class BlockInfo : public TimedObserver {
   uint32_t track_ = 0;
   bool last_of_pass_ = false;
 
-  // Its FIFO in the timeline, for every packet traced or not (bypassed too): each
-  // pixel's arrival (the cycle after the hand-over) and start.
+  // Its FIFO in the timeline, for every packet traced or not (bypassed too): each pixel
+  // from the end of its hand-over's cycle to its start, as the stats' fifo_cycles count.
   void count_fifo(const SpanPacket& p, const PixelLine& line, int slot) {
     if (timeline_ && slot > 0)
       for (int i = 0; i < p.count; ++i)
-        timeline_->count(track_, uint64_t(line.handed(slot - 1, i) + 1), uint64_t(line.start(slot, i)));
+        timeline_->count(track_, uint64_t(line.handed(slot - 1, i)), uint64_t(line.start(slot, i)));
   }
 
   // Records the timed packet's pixels at `slot` of `line`: each pixel's values at the
@@ -124,10 +124,11 @@ class BlockInfo : public TimedObserver {
     }
     if (timeline_ && (!filter_ || filter_->covers(p.y, p.x0, p.x0 + p.count, p.tri->id))) {
       const int64_t first = line.start(slot, 0), last = line.handed(slot, p.count - 1);
-      uint64_t stalled = 0;  // cycles its pixels waited, done, for room downstream
-      for (int i = 0; i < p.count; ++i) stalled += uint64_t(line.handed(slot, i) - line.valid_from(slot, i));
+      uint64_t stalled_pixels = 0;  // cycles its pixels waited, done, for room downstream
+      for (int i = 0; i < p.count; ++i) stalled_pixels += uint64_t(line.handed(slot, i) - line.valid_from(slot, i));
+      const uint64_t stalled = uint64_t(last - line.valid_from(slot, p.count - 1));  // the last one's: the slice's tail
       timeline_->add_packet(track_, uint64_t(first), uint64_t(last + 1 - first), uint32_t(p.count), p.tri->id, p.y, p.x0,
-                            stalled);
+                            stalled, stalled_pixels);
     }
   }
 };

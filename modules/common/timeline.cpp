@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <numeric>
+#include <stdexcept>
 #include <tuple>
 
 #include <nlohmann/json.hpp>
@@ -79,10 +80,9 @@ void Timeline::add_series(const std::string& name, const std::string& unit, uint
   series_.push_back(std::move(s));
 }
 
-// One chain of flow events a packet, through its slices in pipeline order: "s" in the
-// first, "t" in those between, "f" in the last, each at its slice's start (inside it).
-// A packet is its triangle, row and first pixel.
-void Timeline::write_flows(std::string& text) const {
+// The packets: their slices (indices) in pipeline order, a packet being its triangle,
+// row and first pixel; numbered in that order (the `packet` argument and flow id).
+std::vector<std::vector<uint32_t>> Timeline::packets() const {
   std::vector<uint32_t> order;
   for (uint32_t k = 0; k < slices_.size(); ++k)
     if (slices_[k].y >= 0) order.push_back(k);
@@ -91,21 +91,30 @@ void Timeline::write_flows(std::string& text) const {
     return std::tuple(s.triangle, s.y, s.x, s.block, s.start);
   };
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+  std::vector<std::vector<uint32_t>> packets;
+  for (size_t k = 0; k < order.size(); ++k) {
+    const Slice& s = slices_[order[k]];
+    if (k == 0 || std::tie(s.triangle, s.y, s.x) != std::tie(slices_[order[k - 1]].triangle, slices_[order[k - 1]].y,
+                                                              slices_[order[k - 1]].x))
+      packets.emplace_back();
+    packets.back().push_back(order[k]);
+  }
+  return packets;
+}
+
+// One chain of flow events a packet, through its slices in pipeline order: "s" in the
+// first, "t" in those between, "f" in the last, each at its slice's start (inside it).
+void Timeline::write_flows(std::string& text, const std::vector<std::vector<uint32_t>>& packets) const {
   Json out{text};
-  uint64_t id = 0;
-  for (size_t first = 0; first < order.size();) {
-    size_t last = first;
-    const Slice& head = slices_[order[first]];
-    while (last + 1 < order.size() && slices_[order[last + 1]].triangle == head.triangle &&
-           slices_[order[last + 1]].y == head.y && slices_[order[last + 1]].x == head.x)
-      ++last;
-    for (size_t k = first; last > first && k <= last; ++k) {
-      const Slice& s = slices_[order[k]];
-      out << ",\n{\"ph\": \"" << (k == first ? "s" : k == last ? "f" : "t") << "\"" << (k == last ? ", \"bp\": \"e\"" : "")
+  for (uint64_t id = 0; id < packets.size(); ++id) {
+    const std::vector<uint32_t>& chain = packets[id];
+    for (size_t k = 0; chain.size() > 1 && k < chain.size(); ++k) {
+      const Slice& s = slices_[chain[k]];
+      const bool first = k == 0, last = k + 1 == chain.size();
+      out << ",\n{\"ph\": \"" << (first ? "s" : last ? "f" : "t") << "\"" << (last ? ", \"bp\": \"e\"" : "")
           << ", \"pid\": 1, \"tid\": " << uint64_t(s.block) << ", \"cat\": \"packet\", \"name\": \"packet\", \"id\": " << id
           << ", \"ts\": " << s.start << "}";
     }
-    ++id, first = last + 1;
   }
 }
 
@@ -117,7 +126,7 @@ void Timeline::add_fifo_series(const std::vector<std::string>& names, uint64_t e
 std::string Timeline::json(const std::vector<std::string>& names, double clock_mhz, const std::string& scene) const {
   std::string text;
   Json out{text};
-  out << "{\"displayTimeUnit\": \"ns\", \"otherData\": {\"time_unit\": \"cycles\", \"clock_mhz\": " << clock_mhz
+  out << "{\"otherData\": {\"time_unit\": \"cycles\", \"clock_mhz\": " << clock_mhz
       << ", \"version\": " << quoted(core::kVersion) << ", \"scene\": " << quoted(scene) << "},\n\"traceEvents\": [\n"
       << "{\"ph\": \"M\", \"pid\": 1, \"name\": \"process_name\", \"args\": {\"name\": \"shadetlm pipeline\"}}";
   for (size_t b = 0; b < names.size(); ++b)  // the tracks, in pipeline order
@@ -126,23 +135,28 @@ std::string Timeline::json(const std::vector<std::string>& names, double clock_m
         << ", \"name\": \"thread_sort_index\", \"args\": {\"sort_index\": " << uint64_t(b) << "}}";
   uint64_t from = UINT64_MAX, to = 0;  // the slices' span
   const std::vector<uint64_t> shown = shown_cycles();
+  const std::vector<std::vector<uint32_t>> chains = packets();
+  std::vector<int64_t> packet_of(slices_.size(), -1);
+  for (size_t id = 0; id < chains.size(); ++id)
+    for (uint32_t k : chains[id]) packet_of[k] = int64_t(id);
   for (size_t k = 0; k < slices_.size(); ++k) {
     const Slice& s = slices_[k];
     from = std::min(from, s.start), to = std::max(to, s.start + s.busy);
     out << ",\n{\"ph\": \"X\", \"pid\": 1, \"tid\": " << uint64_t(s.block) << ", \"name\": \"" << slice_name(s)
         << "\", \"ts\": " << s.start << ", \"dur\": " << shown[k] << ", \"args\": {\"triangle\": " << uint64_t(s.triangle);
     if (s.y >= 0)
-      out << ", \"y\": " << uint64_t(s.y) << ", \"x\": " << uint64_t(s.x) << ", \"pixels\": " << uint64_t(s.pixels)
-          << ", \"stalled_cycles\": " << s.stalled;
+      out << ", \"packet\": " << uint64_t(packet_of[k]) << ", \"y\": " << uint64_t(s.y) << ", \"x\": " << uint64_t(s.x)
+          << ", \"pixels\": " << uint64_t(s.pixels) << ", \"stalled_cycles\": " << s.stalled
+          << ", \"stalled_pixel_cycles\": " << s.stalled_pixels;
     out << ", \"cycles\": " << s.busy << "}}";
   }
-  write_flows(text);
+  write_flows(text, chains);
   for (const auto& s : series_)
     for (size_t k = 0; k < s.per_bin.size(); ++k) {
       const uint64_t start = k * s.bin;
       if (region_ && (start + s.bin <= from || start >= to)) continue;
       out << ",\n{\"ph\": \"C\", \"pid\": 1, \"name\": " << quoted(s.name) << ", \"ts\": " << start << ", \"args\": {\""
-          << s.unit << "\": " << s.per_bin[k] << "}}";
+          << s.unit << "\": " << s.per_bin[k] << ", \"cycles\": " << std::min(s.bin, s.end - start) << "}}";
     }
   out << "\n]}\n";
   return text;
@@ -156,6 +170,7 @@ std::string timeline_page(const std::string& json) {
   for (char c : json) escaped += c == '<' ? std::string_view("\\u003c") : std::string_view(&c, 1);
   const std::string page = kTimelineViewer, mark = "/*SHADETLM_TRACE_JSON*/";
   const size_t at = page.find(mark);
+  if (at == std::string::npos) throw std::logic_error("the timeline viewer has no place for the trace");
   return page.substr(0, at) + escaped + page.substr(at + mark.size());
 }
 

@@ -19,7 +19,8 @@ class Timeline {
     uint64_t start, busy;  // cycles
     uint32_t pixels, triangle;
     int32_t y, x;          // the packet's row and first pixel (setup: -1, -1)
-    uint64_t stalled;      // cycles its pixels waited, done, for room downstream
+    uint64_t stalled;         // cycles its last pixel waited, done, for room downstream (the slice's end)
+    uint64_t stalled_pixels;  // the cycles all its pixels waited so, summed
   };
   // A counter sampled over bins of `bin` cycles up to cycle `end` (the last bin partial).
   struct Series {
@@ -29,11 +30,11 @@ class Timeline {
   };
 
   void add_triangle(uint32_t block, uint64_t start, uint64_t busy, uint32_t triangle) {
-    slices_.push_back({block, start, busy, 0, triangle, -1, -1, 0});
+    slices_.push_back({block, start, busy, 0, triangle, -1, -1, 0, 0});
   }
   void add_packet(uint32_t block, uint64_t start, uint64_t busy, uint32_t pixels, uint32_t triangle, int y, int x,
-                  uint64_t stalled) {
-    slices_.push_back({block, start, busy, pixels, triangle, y, x, stalled});
+                  uint64_t stalled, uint64_t stalled_pixels) {
+    slices_.push_back({block, start, busy, pixels, triangle, y, x, stalled, stalled_pixels});
   }
   // Before the run: the bins of the FIFO counters, for blocks 0 … blocks − 1.
   void keep_fifos(uint32_t blocks, uint64_t bin) { fifo_bin_ = bin, waited_.assign(blocks, {}); }
@@ -67,7 +68,8 @@ class Timeline {
 
  private:
   std::vector<uint64_t> shown_cycles() const;
-  void write_flows(std::string& out) const;
+  std::vector<std::vector<uint32_t>> packets() const;
+  void write_flows(std::string& out, const std::vector<std::vector<uint32_t>>& packets) const;
 
   std::vector<Slice> slices_;
   uint64_t fifo_bin_ = 1;

@@ -117,7 +117,7 @@ void SetupKernel::run(Emit&& emit) {
     for (const auto& t : mesh.triangles) {
       ++triangles_in_;
       current_.source = source++;
-      if (progress_ && (source & 1023) == 0) progress_(double(source) / double(total));
+      if (progress_ && (source & 63) == 0) progress_(double(source) / double(total));
       const uint32_t idx[3] = {t.x, t.y, t.z};
       // A triangle with no area in space has no plane to interpolate on (the golden
       // model skips it too), even if snapping gives its screen image some area.
