@@ -17,6 +17,13 @@ using namespace shadetlm;  // core::, modules::, reference::
 // starts the simulation itself (modules::render_systemc), so this is never run.
 extern "C" int sc_main(int, char**) { return 1; }
 
+// SystemC's own handler displays reports on stdout, where the results go: shown on
+// stderr instead, the rest (throw, stop) left to it.
+void report_to_stderr(const sc_core::sc_report& report, const sc_core::sc_actions& actions) {
+  if (actions & sc_core::SC_DISPLAY) std::cerr << sc_core::sc_report_compose_message(report) << "\n";
+  sc_core::sc_report_handler::default_handler(report, actions & ~sc_core::SC_DISPLAY);
+}
+
 int main(int argc, char** argv) {
   setenv("SYSTEMC_DISABLE_COPYRIGHT_MESSAGE", "1", 1);  // keep stdout for results
   core::remove_temporaries_on_signals();  // an interrupted run leaves no partial output
@@ -24,6 +31,7 @@ int main(int argc, char** argv) {
   sc_core::sc_report_handler::set_actions(sc_core::SC_ERROR, sc_core::SC_THROW);
   sc_core::sc_report_handler::set_actions(sc_core::SC_WARNING, sc_core::SC_DISPLAY);
   sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);  // e.g. the VCD timescale
+  sc_core::sc_report_handler::set_handler(report_to_stderr);
   CLI::App app{"shadetlm: a SystemC/TLM-2.0 model of a per-pixel shading pipeline"};
   // The version, and what RTL this build has (docs/rtl.md).
   app.set_version_flag("--version", [] { return std::string(core::kVersion) + "\nrtl: " + modules::normalize_rtl_build(); });

@@ -3,13 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <system_error>
 
 #include <unistd.h>
 
 namespace shadetlm::app {
 
 Progress::Progress(std::string command) : command_(std::move(command)), enabled_(isatty(fileno(stderr)) != 0) {
-  if (enabled_) ticker_ = std::thread([this] { run(); });
+  if (!enabled_) return;
+  try {
+    ticker_ = std::thread([this] { run(); });
+  } catch (const std::system_error&) {  // no thread to be had (a limit): the run goes on without the line
+  }
 }
 
 Progress::~Progress() {

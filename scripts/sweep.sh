@@ -14,7 +14,9 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 repeats=5 build=1
 while [[ ${1:-} == --* ]]; do
   case $1 in
-    --repeats) repeats=$2; shift 2 ;;
+    --repeats)
+      [[ ${2:-} =~ ^[0-9]+$ ]] || { echo "sweep.sh: --repeats takes a count (0: one concurrent time a run)" >&2; exit 2; }
+      repeats=$2; shift 2 ;;
     --no-build) build=0; shift ;;
     *) echo "sweep.sh: unknown option $1" >&2; exit 2 ;;
   esac
