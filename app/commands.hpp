@@ -39,6 +39,8 @@ CLI::Validator finite_in(double min, double max);
 // A path or text option: if given, not empty (an empty one would be taken as not given).
 extern const CLI::Validator kNotEmpty;
 extern const CLI::Validator kPngPath;  // ends in .png
+// Whether `path` ends in `extension` (".png"), in any case.
+bool has_extension(const std::string& path, const std::string& extension);
 
 // Shared by the rendering commands.
 struct SceneOptions {

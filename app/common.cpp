@@ -104,13 +104,18 @@ bool same_file(const std::string& a, const std::string& b) {
 const CLI::Validator kNotEmpty([](std::string& text) { return text.empty() ? std::string("is empty") : std::string(); },
                                 "NOT EMPTY");
 
+bool has_extension(const std::string& path, const std::string& extension) {
+  if (path.size() < extension.size()) return false;
+  std::string end = path.substr(path.size() - extension.size());
+  for (char& c : end) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return end == extension;
+}
+
 // A PNG output names itself .png: a preview written as PNG into p.jpg would mislead
 // whatever opens it by its extension.
 const CLI::Validator kPngPath(
     [](std::string& text) {
-      std::string end = text.size() >= 4 ? text.substr(text.size() - 4) : "";
-      for (char& c : end) c = char(std::tolower(static_cast<unsigned char>(c)));
-      return end == ".png" ? std::string() : "is written as PNG: give a path ending in .png";
+      return has_extension(text, ".png") ? std::string() : "is written as PNG: give a path ending in .png";
     },
     "FILE.png");
 

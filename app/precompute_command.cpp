@@ -37,11 +37,6 @@ core::Mesh surface_mesh(const std::string& surface) {
 }  // namespace
 
 namespace {
-bool ends_with_png(std::string path) {
-  std::transform(path.begin(), path.end(), path.begin(), [](char c) { return char(std::tolower(c)); });
-  return path.size() >= 4 && path.compare(path.size() - 4, 4, ".png") == 0;
-}
-
 // The finest level as an 8-bit PNG, as normal maps are stored: (N + 1) / 2 (core::encode_unorm).
 std::string normal_map_png(const core::Texture& map) {
   std::vector<unsigned char> rgb(size_t(map.width) * size_t(map.height) * 3);
@@ -104,7 +99,7 @@ Command add_precompute_command(CLI::App& app) {
             }
             const std::vector<core::Texture> levels = core::mip_levels(base, !opt->keep_mip_lengths);
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            const bool png = ends_with_png(opt->output);
+            const bool png = has_extension(opt->output, ".png");
             progress.phase("writing");
             if (png) {
               core::OutputSet out;

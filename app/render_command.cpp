@@ -73,10 +73,6 @@ struct RenderOptions {
   std::string vcd, region, triangles, timeline, timing_log, vectors;
 };
 
-bool ends_with(const std::string& text, const std::string& end) {
-  return text.size() >= end.size() && text.compare(text.size() - end.size(), end.size(), end) == 0;
-}
-
 // What the run records for inspection (waveforms, timeline, traced region and triangles),
 // from the options; throws if they name it wrongly or this build or engine cannot record it.
 modules::Inspect inspection_of(const RenderOptions& opt, const core::Scene& scene) {
@@ -103,9 +99,9 @@ modules::Inspect inspection_of(const RenderOptions& opt, const core::Scene& scen
       throw core::InputError("--trace-triangles", opt.triangles,
                              "starts past the scene's last triangle (" + std::to_string(triangles) + " triangles)");
   }
-  if (!inspect.vcd.empty() && (inspect.vcd.size() < 5 || !ends_with(inspect.vcd, ".vcd")))
+  if (!inspect.vcd.empty() && (inspect.vcd.size() < 5 || !has_extension(inspect.vcd, ".vcd")))
     throw core::InputError("--vcd", inspect.vcd, "the waveform file must end in .vcd");
-  if (!inspect.timeline.empty() && !ends_with(inspect.timeline, ".json") && !ends_with(inspect.timeline, ".html"))
+  if (!inspect.timeline.empty() && !has_extension(inspect.timeline, ".json") && !has_extension(inspect.timeline, ".html"))
     throw core::InputError("--timeline", inspect.timeline,
                            "the timeline is written as .json (trace events) or .html (the offline viewer)");
   for (const auto& [option, path] : {std::pair{"--vcd", inspect.vcd}, std::pair{"--timeline", inspect.timeline}})

@@ -1,6 +1,7 @@
 #include "shadetlm/modules/common/timeline.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <numeric>
 #include <stdexcept>
@@ -176,7 +177,9 @@ std::string timeline_page(const std::string& json) {
 
 void Timeline::write(const std::string& path, const std::vector<std::string>& names, double clock_mhz,
                      const std::string& scene) const {
-  const bool html = path.size() >= 5 && path.compare(path.size() - 5, 5, ".html") == 0;
+  std::string end = path.size() >= 5 ? path.substr(path.size() - 5) : "";
+  for (char& c : end) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const bool html = end == ".html";  // (any case, as the render's check takes it)
   const std::string text = json(names, clock_mhz, scene);
   core::write_file(path, html ? timeline_page(text) : text);
 }
