@@ -1,6 +1,8 @@
 #include "shadetlm/core/output.hpp"
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <csignal>
 #include <cstring>
@@ -47,22 +49,37 @@ extern "C" void on_signal(int signal) {
   std::raise(signal);  // ends the process by the signal: its status is 128 + signal
 }
 
-// Temporaries "<name>.tmp.<pid>" of `path` whose process is gone: a run killed outright.
+// This host's name as it goes into a temporary's name: letters, digits and '-' only.
+// With the process number it tells writers apart on a filesystem that several machines
+// share (a cluster's shards), where a process number alone is not unique.
+const std::string& host_tag() {
+  static const std::string tag = [] {
+    char name[256] = {};
+    std::string t = ::gethostname(name, sizeof name - 1) == 0 ? name : "";
+    for (char& c : t)
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-') c = '-';
+    return t.empty() ? std::string("host") : t;
+  }();
+  return tag;
+}
+
+// Temporaries "<name>.tmp.<host>.<pid>" of `path` that this host wrote and whose process
+// is gone: a run killed outright. Another host's are left alone: their process cannot be
+// asked from here.
 void remove_stale_temporaries(const std::string& path) {
   namespace fs = std::filesystem;
   const fs::path output(path);
   const fs::path folder = output.has_parent_path() ? output.parent_path() : fs::path(".");
-  const std::string prefix = output.filename().string() + ".tmp.";
+  const std::string prefix = output.filename().string() + ".tmp." + host_tag() + ".";
   std::error_code ec;
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
-    // "<pid>", or "<pid>.tmp.<pid>…" (a writer's own temporary of one)
-    const std::string pid = name.substr(prefix.size(), name.find('.', prefix.size()) - prefix.size());
-    const std::string rest = name.substr(prefix.size() + pid.size());
+    // "<pid>", or "<pid>.tmp.<host>.<pid>…" (a writer's own temporary of one)
+    const size_t end_of_pid = std::min(name.find('.', prefix.size()), name.size());
+    const std::string pid = name.substr(prefix.size(), end_of_pid - prefix.size());
     if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos || pid.size() > 9) continue;
-    if (!rest.empty() && (rest.compare(0, 5, ".tmp.") != 0 || rest.find_first_not_of(".tmp0123456789") != std::string::npos))
-      continue;
+    if (end_of_pid < name.size() && name.compare(end_of_pid, 5, ".tmp.") != 0) continue;
     // Still running, unless it is this process's number: then a run before it with the
     // same number (a container's process 1) left it, since this run has not written yet.
     const pid_t owner = pid_t(std::stol(pid));
@@ -75,7 +92,9 @@ void remove_stale_temporaries(const std::string& path) {
 
 }  // namespace
 
-std::string temporary_path_for(const std::string& path) { return path + ".tmp." + std::to_string(::getpid()); }
+std::string temporary_path_for(const std::string& path) {
+  return path + ".tmp." + host_tag() + "." + std::to_string(::getpid());
+}
 
 void remove_quietly(const std::string& path) {
   std::error_code ec;

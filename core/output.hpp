@@ -1,14 +1,14 @@
 #pragma once
 // Every file the program writes appears whole or not at all (docs/robustness.md):
-//  - it is written to a temporary beside it, "<path>.tmp.<pid>", and renamed into place
-//    only once every write, the flush to disk and the close have succeeded;
+//  - it is written to a temporary beside it, "<path>.tmp.<host>.<pid>", and renamed
+//    into place only once every write, the flush to disk and the close have succeeded;
 //  - a failure (a full disk, a file size limit) removes the temporary and names the
 //    output, not the temporary;
 //  - SIGINT, SIGTERM and SIGHUP remove the temporaries being written and end the
 //    process by the same signal (exit status 128 + its number); past a file size
 //    limit (SIGXFSZ, ignored) a write fails like any other;
 //  - a temporary left by a run that was killed outright (SIGKILL, a power cut) is named
-//    and removed by the next run that writes the same output.
+//    and removed by the next run on the same host that writes the same output.
 #include <stdexcept>
 #include <string>
 #include <string_view>

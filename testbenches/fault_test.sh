@@ -222,6 +222,18 @@ killed_case sigKILL-after-1s 1
 killed_case sigKILL-while-vcd-written 'out.vcd.tmp.*'
 killed_case sigKILL-while-frame-written 'out.exr.tmp.*'
 
+# A temporary is "<output>.tmp.<host>.<pid>": a dead process's on this host is removed,
+# another host's is left alone (on a folder a cluster shares, its writer may still run).
+begin other-hosts-temporaries-kept
+mkdir -p h
+host=$(hostname | tr -c 'A-Za-z0-9\n-' '-')
+: >h/out.exr.tmp.$host.999999999
+: >h/out.exr.tmp.another-node.1
+(cd h && "$bin" render "${small[@]}" -o out.exr) >"$tmp/stdout" 2>"$tmp/stderr" || problem "render failed"
+[[ ! -e h/out.exr.tmp.$host.999999999 ]] || problem "this host's dead temporary was not removed"
+[[ -e h/out.exr.tmp.another-node.1 ]] || problem "another host's temporary was removed"
+end
+
 # --- 5. An allocation limit (ulimit -v) that a 1920x1080 render cannot live with: exit 1
 # or 2 with a message, no crash, no output, no temporary. The limits are found here:
 # from the least a 64x48 render needs up to just under what the 1920x1080 one needs.
