@@ -15,6 +15,7 @@
 
 #include "app/commands.hpp"
 #include "app/progress.hpp"
+#include "shadetlm/core/bump_map.hpp"
 #include "shadetlm/core/compare.hpp"
 #include "shadetlm/core/memory_budget.hpp"
 #include "shadetlm/core/input_error.hpp"
@@ -79,6 +80,7 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
                       require_output("--output", opt->output);
                       check_outputs({{"--output", opt->output}}, {opt->height});
                       const core::Texture map = core::load_texture_file(opt->height);
+                      core::check_height_map(map, opt->height, "");  // what a scene accepts of its height map
                       const core::HeightField f = core::height_field(map, opt->height, "");
                       const uint64_t volume = uint64_t(f.width) * uint64_t(f.height) * uint64_t(opt->slices) * 4;
                       core::MemoryBudget::process().take(k == "conemap" ? volume / uint64_t(opt->slices) * 4

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "app/commands.hpp"
+#include "app/map_cache.hpp"
 #include "app/progress.hpp"
 #include "shadetlm/core/compare.hpp"
 #include "shadetlm/core/input_error.hpp"
@@ -71,6 +72,7 @@ struct RenderOptions {
   float heat_max = 32;
   bool compare = false, allow_nonfinite = false;
   std::string vcd, region, triangles, timeline, timing_log, vectors;
+  std::string map_cache;  // parallax maps kept here (app/map_cache.hpp)
 };
 
 // What the run records for inspection (waveforms, timeline, traced region and triangles),
@@ -308,12 +310,20 @@ Command add_render_command(CLI::App& app) {
   cmd->add_option("--timing-log", opt->timing_log,
                   "every pixel's start and hand-over cycle at every block, for `shadetlm timing-check`")
       ->check(kNotEmpty);
+  cmd->add_option("--map-cache", opt->map_cache,
+                  "a folder of parallax maps: read from it, built into it once (default: $SHADETLM_MAP_CACHE)")
+      ->envname("SHADETLM_MAP_CACHE")
+      ->check(kNotEmpty);
   return {cmd, [opt]() {
             Progress progress("render");
             progress.phase("loading the scene");
-            const core::Scene scene = opt->scene.load();
+            core::Scene scene = opt->scene.load();
             const modules::Inspect inspect = inspection_of(*opt, scene);
             check_before_simulation(*opt, scene, inspect);
+            if (!opt->map_cache.empty()) {
+              progress.phase("parallax maps (cache)");
+              use_map_cache(scene, opt->map_cache);
+            }
             modules::RenderResult r = render_with_progress(scene, opt->engine, inspect, progress);
             double reference_s = 0;
             progress.phase(opt->compare ? "golden model" : "statistics");

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <limits>
 
 #include "shadetlm/core/frame.hpp"
@@ -122,9 +125,12 @@ void gap_transform_axis(std::vector<float>& grid, const int dims[3], int axis, b
     }
 }
 
+// The shortest of 15 or 17 significant digits that reads back as v: a key holds every
+// parameter exactly, and 0.25 stays "0.25".
 std::string fmt(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
+  std::snprintf(buf, sizeof buf, "%.15g", v);
+  if (std::strtod(buf, nullptr) != v) std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
 }
 
@@ -144,10 +150,9 @@ VolumeMap distance_map(const HeightField& f, int slices) {
   gap_transform_axis(m.values, dims, 1, true);
   gap_transform_axis(m.values, dims, 2, false);
   for (float& v : m.values) v = std::sqrt(v);
-  m.params = {{"shadetlm:map", "distance"},
-              {"shadetlm:slices", std::to_string(slices)},
-              {"shadetlm:units", "voxels"},
-              {"shadetlm:safety", "box gap: no point of the voxel is nearer the cells' boxes [cell] x [0, D*max corner]"}};
+  m.params = map_key("distance", f, slices);
+  m.params.insert({{"shadetlm:units", "voxels"},
+                   {"shadetlm:safety", "box gap: no point of the voxel is nearer the cells' boxes [cell] x [0, D*max corner]"}});
   return m;
 }
 
@@ -224,12 +229,9 @@ VolumeMap refined_map(const HeightField& f, const VolumeMap& distance, const Ref
   for (size_t v = 0; v < m.values.size(); ++v)
     if (std::isfinite(remaining[v]))
       m.values[v] = std::max(distance.values[v], remaining[v] - float(p.margin));
-  m.params["shadetlm:map"] = "refined";
-  m.params["shadetlm:min_elevation_deg"] = fmt(p.min_elevation_deg);
-  m.params["shadetlm:azimuths"] = std::to_string(p.azimuths);
-  m.params["shadetlm:elevations"] = std::to_string(p.elevations);
-  m.params["shadetlm:rays_per_texel"] = std::to_string(n);
-  m.params["shadetlm:margin"] = fmt(p.margin);
+  RefinedParams used = p;
+  used.rays_per_texel = n;
+  for (const auto& [name, value] : map_key("refined", f, D, &used)) m.params[name] = value;
   m.params["shadetlm:safety"] =
       "max(distance map, smallest remaining distance from the voxel's exit to the first hit over the sampled rays "
       "crossing it - margin); elevations in the tracer's space (x, y in texels, z in slices)";
@@ -266,12 +268,59 @@ ConeMap cone_map(const HeightField& f, int slices, int levels) {
         m.ratio[c] = std::min(m.ratio[c], float(std::sqrt(double(gap[c])) / rise));
       }
   }
-  m.params = {{"shadetlm:map", "cone"},
-              {"shadetlm:slices", std::to_string(slices)},
-              {"shadetlm:levels", std::to_string(levels)},
-              {"shadetlm:units", "apex in slices, ratio in texels across per slice up"},
-              {"shadetlm:safety", "classic cones from the cell's footprint over the cells' boxes, heights rounded up"}};
+  m.params = map_key("cone", f, slices, nullptr, levels);
+  m.params.insert({{"shadetlm:units", "apex in slices, ratio in texels across per slice up"},
+                   {"shadetlm:safety", "classic cones from the cell's footprint over the cells' boxes, heights rounded up"}});
   return m;
+}
+
+std::string height_checksum(const HeightField& f) {
+  uint64_t h = 14695981039346656037ull;  // FNV-1a, 64 bits
+  auto mix = [&h](const void* data, size_t size) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < size; ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+  };
+  const int32_t sizes[2] = {f.width, f.height};
+  mix(sizes, sizeof sizes);
+  mix(f.h.data(), f.h.size() * sizeof(float));
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+MapKey map_key(const std::string& kind, const HeightField& f, int slices, const RefinedParams* refined, int levels) {
+  MapKey k{{"shadetlm:map", kind}, {"shadetlm:slices", std::to_string(slices)},
+           {"shadetlm:height_checksum", height_checksum(f)}};
+  if (refined) {
+    k["shadetlm:min_elevation_deg"] = fmt(refined->min_elevation_deg);
+    k["shadetlm:azimuths"] = std::to_string(refined->azimuths);
+    k["shadetlm:elevations"] = std::to_string(refined->elevations);
+    k["shadetlm:rays_per_texel"] = std::to_string(refined->rays_per_texel);
+    k["shadetlm:margin"] = fmt(refined->margin);
+  }
+  if (levels > 0) k["shadetlm:levels"] = std::to_string(levels);
+  return k;
+}
+
+void check_map_key(const std::map<std::string, std::string>& params, const MapKey& key, int width, int height,
+                   const HeightField& f, const std::string& file) {
+  if (width != f.width || height != f.height)
+    throw InputError(file, "size", std::to_string(width) + "x" + std::to_string(height) + ", the height map is " +
+                                       std::to_string(f.width) + "x" + std::to_string(f.height));
+  // The kind, the height map and the slices first: a mismatch there explains the rest.
+  std::vector<std::string> order = {"shadetlm:map", "shadetlm:height_checksum", "shadetlm:slices"};
+  for (const auto& entry : key)
+    if (std::find(order.begin(), order.end(), entry.first) == order.end()) order.push_back(entry.first);
+  for (const std::string& name : order) {
+    if (!key.count(name)) continue;
+    const std::string& value = key.at(name);
+    auto it = params.find(name);
+    if (it == params.end()) throw InputError(file, name, "missing: the scene needs " + value);
+    if (it->second != value) {
+      const std::string what = name == "shadetlm:height_checksum" ? " (a map of another height map)" : "";
+      throw InputError(file, name, "is " + it->second + ", the scene's is " + value + what);
+    }
+  }
 }
 
 }  // namespace shadetlm::core

@@ -196,6 +196,21 @@ struct ConeMap {
 };
 ConeMap cone_map(const HeightField& f, int slices, int levels);
 
+// What identifies a map, written into it by its builder as shadetlm:* parameters: its
+// kind ("distance", "refined", "cone"), slices, the height field's checksum, and the
+// builder's own parameters (refined: the elevation bound, directions, rays and margin;
+// cone: the levels). A map read back for a scene is checked against the scene's key,
+// and a map cache files maps under it.
+using MapKey = std::map<std::string, std::string>;
+MapKey map_key(const std::string& kind, const HeightField& f, int slices, const RefinedParams* refined = nullptr,
+               int levels = 0);
+// The first parameter of `key` that `params` lacks or holds another value of, as an
+// InputError naming `file` and the parameter; also the map's size against the field's.
+void check_map_key(const std::map<std::string, std::string>& params, const MapKey& key, int width, int height,
+                   const HeightField& f, const std::string& file);
+// A checksum of a height field's size and values (FNV-1a, 64 bits, 16 hex digits).
+std::string height_checksum(const HeightField& f);
+
 // ---- The io component (shadetlm::io, linked apart: file formats) from here on.
 // Maps as EXR: a volume's slices as channels "d.000" …, a cone map as "apex" and
 // "ratio", the parameters as shadetlm:* string attributes. Reading checks the kind and

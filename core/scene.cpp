@@ -385,6 +385,12 @@ void read_parallax(JsonReader pr, ParallaxSettings& ps) {
   ps.binary_steps = pr.integer("binary_steps", ps.binary_steps, 0, 64);
   ps.min_elevation_deg = pr.number("min_elevation_deg", ps.min_elevation_deg, 0.1, 89);
   ps.margin = pr.number("margin", ps.margin, 0, 64);
+  if (pr.has("map_file")) {
+    if (ps.method != ParallaxMethod::Distance && ps.method != ParallaxMethod::Cone)
+      pr.fail("map_file", "only the distance and cone methods read a map");
+    ps.map_file = pr.string("map_file");
+    if (ps.map_file.empty()) pr.fail("map_file", "an empty path");
+  }
   pr.finish();
 }
 
@@ -496,6 +502,8 @@ std::vector<std::string> files_read(const Scene& s, const json& doc, const std::
       if (t.is_object() && t.contains("file") && t["file"].is_string()) files.push_back(resolve(base_dir, t["file"]));
   for (const auto& o : doc["objects"])
     if (o.is_object() && o.contains("file") && o["file"].is_string()) files.push_back(resolve(base_dir, o["file"]));
+  for (const Material& m : s.materials)
+    if (!m.parallax.map_file.empty()) files.push_back(m.parallax.map_file);
   return files;
 }
 
@@ -529,6 +537,8 @@ Scene load_scene_text(const std::string& text, const std::string& name, const st
 
   const std::map<std::string, int> texture_index = read_textures(root, doc, base_dir, s.textures);
   std::map<std::string, int> material_index = read_materials(root, doc, texture_index, s);
+  for (Material& m : s.materials)
+    if (!m.parallax.map_file.empty()) m.parallax.map_file = resolve(base_dir, m.parallax.map_file);
 
   const auto objects = root.array("objects");
   if (objects.empty()) root.fail("objects", "an empty array: a scene draws at least one object");

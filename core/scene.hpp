@@ -78,6 +78,9 @@ struct ParallaxSettings {
   int binary_steps = 6;      // relief
   double min_elevation_deg = 10;  // refined map: admissible directions (tracer space)
   double margin = 0;              // refined map: voxels taken off (safety)
+  // A map written by `shadetlm precompute` (distance, refined or cone) read instead of
+  // building one; checked against these settings and the height map. Empty: built.
+  std::string map_file;
 };
 
 struct Material {

@@ -152,6 +152,43 @@ check parallax-no-height-map 2 "$bin" render "$src/scenes/parallax/steps.json" -
   --set materials.carved.height_map=checker --set materials.carved.parallax.slices=0
 expect_output parallax-no-height-map "slices"
 
+# Parallax maps read, not rebuilt: one precomputed and named by the scene (map_file), or
+# kept in a map cache; the frame is the one the maps built on load give. A map for
+# other settings or another height map is refused naming the field (exit 2, no frame).
+px=("$src/scenes/parallax/steps.json" --set "textures.relief={\"type\":\"image\",\"file\":\"$tmp/h64.png\"}"
+    --set camera.resolution=[48,32])
+check px-built 0 "$bin" render "${px[@]}" -o "$tmp/px/built.exr"
+check px-precompute 0 "$bin" precompute refinedmap "$tmp/h64.png" -o "$tmp/px/refined.exr"
+check px-map-file 0 "$bin" render "${px[@]}" -o "$tmp/px/read.exr" --set "materials.carved.parallax.map_file=$tmp/px/refined.exr"
+check px-map-file-same 0 "$bin" compare "$tmp/px/read.exr" "$tmp/px/built.exr" --fail 0
+check px-map-file-margin 2 "$bin" render "${px[@]}" -o "$tmp/px/bad.exr" \
+  --set "materials.carved.parallax.map_file=$tmp/px/refined.exr" --set materials.carved.parallax.margin=0.25
+expect_output px-map-file-margin "shadetlm:margin"
+expect_output px-map-file-margin "refined.exr"
+check px-map-file-other-height 2 "$bin" render "$src/scenes/parallax/steps.json" -o "$tmp/px/bad.exr" \
+  --set camera.resolution=[48,32] --set textures.relief.size=[64,64] --set "materials.carved.parallax.map_file=$tmp/px/refined.exr"
+expect_output px-map-file-other-height "shadetlm:height_checksum"
+check px-map-file-donnelly 2 "$bin" render "${px[@]}" -o "$tmp/px/bad.exr" \
+  --set "materials.carved.parallax.map_file=$tmp/px/refined.exr" --set materials.carved.parallax.map=donnelly
+expect_output px-map-file-donnelly "shadetlm:map"
+expect_no_file px-map-file-refused "$tmp/px/bad.exr"
+check px-map-file-missing 2 "$bin" render "${px[@]}" -o "$tmp/px/bad.exr" --set "materials.carved.parallax.map_file=$tmp/none.exr"
+expect_output px-map-file-missing "none.exr"
+check px-map-file-steep 2 "$bin" render "${px[@]}" -o "$tmp/px/bad.exr" --set materials.carved.parallax.method=steep \
+  --set "materials.carved.parallax.map_file=$tmp/px/refined.exr"
+expect_output px-map-file-steep "map_file"
+check px-cache-build 0 "$bin" render "${px[@]}" -o "$tmp/px/c1.exr" --map-cache "$tmp/px/cache"
+cached=$(ls "$tmp/px/cache")
+[[ $cached == refined-*.exr ]] && ((passes++)) || { echo "FAIL px-cache-build: the cache holds '$cached'"; ((failures++)); }
+touch -d '2000-01-01' "$tmp/px/cache/$cached"
+SHADETLM_MAP_CACHE=$tmp/px/cache check px-cache-read 0 "$bin" render "${px[@]}" -o "$tmp/px/c2.exr"
+[[ $(ls "$tmp/px/cache") == "$cached" && $(stat -c %Y "$tmp/px/cache/$cached") == 946684800 ]] && ((passes++)) ||
+  { echo "FAIL px-cache-read: the cached map was built again"; ((failures++)); }
+check px-cache-same 0 "$bin" compare "$tmp/px/c2.exr" "$tmp/px/built.exr" --fail 0
+check px-cache-cone 0 "$bin" render "${px[@]}" -o "$tmp/px/c3.exr" --map-cache "$tmp/px/cache" \
+  --set materials.carved.parallax.method=cone
+[[ $(ls "$tmp/px/cache" | wc -l) == 2 ]] && ((passes++)) || { echo "FAIL px-cache-cone: no second map"; ((failures++)); }
+
 # A mesh through assimp, from the scenes folder.
 check mesh 0 "$bin" reference "$src/scenes/knot.json" -o "$tmp/knot.exr" --set camera.resolution=[96,64]
 

@@ -1,6 +1,7 @@
 // The parallax block (docs/parallax.md): the maps, the tracers against the golden
 // model's exact hit, the safety gates, and bad input.
 #include <cmath>
+#include <filesystem>
 #include <random>
 
 #include "shadetlm/core/parallax_map.hpp"
@@ -278,6 +279,66 @@ TEST_CASE("maps go to EXR with their parameters and come back, bad files named",
   core::Texture nan_map = constant_map(4, 4, 0.5f);
   nan_map.texels[5].r = std::nanf("");
   CHECK_THROWS_AS(core::height_field(nan_map, "nan.png", "height_map"), core::InputError);
+}
+
+// The field of the InputError that reading `s`'s map for `height` throws ("" if none).
+std::string map_refusal(const core::Texture& height, const core::ParallaxSettings& s) {
+  try {
+    modules::build_parallax_maps(height, s, "scene.json");
+  } catch (const core::InputError& e) {
+    CHECK(std::string(e.what()).find(s.map_file) != std::string::npos);  // the file is named
+    return e.field();
+  }
+  return "";
+}
+
+TEST_CASE("a precomputed map is read instead of built, and refused for another scene's settings or height map",
+          "[parallax]") {
+  const auto dir = test::temp_dir("parallax-map-files");
+  const core::Texture height = noise_map(16);
+  for (bool cone : {false, true}) {
+    core::ParallaxSettings s = settings(cone ? core::ParallaxMethod::Cone : core::ParallaxMethod::Distance);
+    s.slices = 8;
+    const modules::ParallaxMaps built = modules::build_parallax_maps(height, s, "scene.json");
+    CHECK_FALSE(built.loaded);
+    const std::string file = (dir / (cone ? "cone.exr" : "refined.exr")).string();
+    if (cone) core::write_cone_map(file, built.cone);
+    else core::write_volume_map(file, built.volume, "refined");
+    core::ParallaxSettings read = s;
+    read.map_file = file;
+    const modules::ParallaxMaps back = modules::build_parallax_maps(height, read, "scene.json");
+    CHECK(back.loaded);
+    CHECK(back.volume.values == built.volume.values);
+    CHECK(back.cone.ratio == built.cone.ratio);
+    CHECK(back.cone.apex == built.cone.apex);
+    // Another setting or another height map: refused, naming the parameter.
+    core::ParallaxSettings other = read;
+    other.slices = 16;
+    CHECK(map_refusal(height, other) == "shadetlm:slices");
+    if (!cone) {
+      other = read;
+      other.margin = 0.25;
+      CHECK(map_refusal(height, other) == "shadetlm:margin");
+      other = read;
+      other.min_elevation_deg = 20;
+      CHECK(map_refusal(height, other) == "shadetlm:min_elevation_deg");
+      other = read;
+      other.refined = false;  // Donnelly's map asked, a refined one given
+      CHECK(map_refusal(height, other) == "shadetlm:map");
+    }
+    core::Texture changed = height;
+    changed.texels[3].r += 0.01f;
+    CHECK(map_refusal(changed, read) == "shadetlm:height_checksum");
+    CHECK(map_refusal(noise_map(32), read) == "size");
+  }
+  // A truncated map: refused, naming the file.
+  const std::string whole = (dir / "refined.exr").string(), cut = (dir / "cut.exr").string();
+  std::filesystem::copy_file(whole, cut);
+  std::filesystem::resize_file(cut, std::filesystem::file_size(whole) / 2);
+  core::ParallaxSettings truncated = settings(core::ParallaxMethod::Distance);
+  truncated.slices = 8;
+  truncated.map_file = cut;
+  CHECK_THROWS_AS(modules::build_parallax_maps(height, truncated, "scene.json"), core::InputError);
 }
 
 TEST_CASE("without early exit every pixel pays the full loop, for the same result", "[parallax]") {

@@ -7,13 +7,33 @@
 
 namespace shadetlm::modules {
 
+core::MapKey parallax_map_key(const core::HeightField& f, const core::ParallaxSettings& s) {
+  if (s.method == core::ParallaxMethod::Cone) return core::map_key("cone", f, s.slices, nullptr, 4 * s.slices);
+  if (!s.refined) return core::map_key("distance", f, s.slices);
+  core::RefinedParams p;
+  p.min_elevation_deg = s.min_elevation_deg;
+  p.margin = s.margin;
+  return core::map_key("refined", f, s.slices, &p);
+}
+
 ParallaxMaps build_parallax_maps(const core::Texture& height_map, const core::ParallaxSettings& s,
                                  const std::string& file) {
   const auto start = std::chrono::steady_clock::now();
   ParallaxMaps m;
   m.field = core::height_field(height_map, file, "height_map");
   m.slices = s.slices;
-  if (s.method == core::ParallaxMethod::Distance) {
+  const bool distance = s.method == core::ParallaxMethod::Distance, cone = s.method == core::ParallaxMethod::Cone;
+  if (!s.map_file.empty() && (distance || cone)) {  // precomputed: read, and checked against the scene
+    const core::MapKey key = parallax_map_key(m.field, s);
+    if (distance) {
+      m.volume = core::read_volume_map(s.map_file, "distance");
+      core::check_map_key(m.volume.params, key, m.volume.width, m.volume.height, m.field, s.map_file);
+    } else {
+      m.cone = core::read_cone_map(s.map_file);
+      core::check_map_key(m.cone.params, key, m.cone.width, m.cone.height, m.field, s.map_file);
+    }
+    m.loaded = true;
+  } else if (distance) {
     m.volume = core::distance_map(m.field, s.slices);
     if (s.refined) {
       core::RefinedParams p;
@@ -21,7 +41,7 @@ ParallaxMaps build_parallax_maps(const core::Texture& height_map, const core::Pa
       p.margin = s.margin;
       m.volume = core::refined_map(m.field, m.volume, p);
     }
-  } else if (s.method == core::ParallaxMethod::Cone) {
+  } else if (cone) {
     m.cone = core::cone_map(m.field, s.slices, 4 * s.slices);
   }
   m.precompute_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

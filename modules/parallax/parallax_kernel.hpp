@@ -39,8 +39,13 @@ struct ParallaxMaps {
   core::VolumeMap volume;  // distance: Donnelly's or refined
   core::ConeMap cone;      // cone
   int slices = 16;
-  double precompute_s = 0;
+  double precompute_s = 0;  // building the maps, or reading them
+  bool loaded = false;      // read from the settings' map_file
 };
+// The key a map for these settings must carry (core::map_key): the map the method reads.
+core::MapKey parallax_map_key(const core::HeightField& f, const core::ParallaxSettings& s);
+// The maps the settings' method reads: read from s.map_file when it names one (checked
+// against the key), else built.
 ParallaxMaps build_parallax_maps(const core::Texture& height_map, const core::ParallaxSettings& s,
                                  const std::string& file);
 

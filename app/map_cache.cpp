@@ -1,0 +1,55 @@
+#include "app/map_cache.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/parallax_map.hpp"
+#include "shadetlm/core/version.hpp"
+#include "shadetlm/modules/parallax/parallax_kernel.hpp"
+
+namespace shadetlm::app {
+
+namespace {
+
+// "<kind>-<16 hex digits>.exr": FNV-1a over the key's names and values and the version.
+std::string cache_name(const core::MapKey& key) {
+  uint64_t h = 14695981039346656037ull;
+  auto mix = [&h](const std::string& text) {
+    for (unsigned char c : text + '\0') h = (h ^ c) * 1099511628211ull;
+  };
+  for (const auto& [name, value] : key) mix(name), mix(value);
+  mix(core::kVersion);
+  char digits[17];
+  std::snprintf(digits, sizeof digits, "%016llx", static_cast<unsigned long long>(h));
+  return key.at("shadetlm:map") + "-" + digits + ".exr";
+}
+
+}  // namespace
+
+int use_map_cache(core::Scene& scene, const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (!fs::is_directory(dir)) throw core::InputError("--map-cache", dir, "is not a folder and cannot be made one");
+  int built = 0;
+  for (core::Material& m : scene.materials) {
+    core::ParallaxSettings& s = m.parallax;
+    const bool reads_map = s.method == core::ParallaxMethod::Distance || s.method == core::ParallaxMethod::Cone;
+    if (m.path != core::ShadingPath::Parallax || !reads_map || !s.map_file.empty() || m.height_map < 0) continue;
+    const core::Texture& height = scene.textures[size_t(m.height_map)];
+    const core::MapKey key = modules::parallax_map_key(core::height_field(height, scene.file, "height_map"), s);
+    const std::string path = (fs::path(dir) / cache_name(key)).string();
+    if (!fs::exists(path)) {
+      modules::ParallaxMaps maps = modules::build_parallax_maps(height, s, scene.file);
+      maps.volume.params["shadetlm:version"] = maps.cone.params["shadetlm:version"] = core::kVersion;
+      if (s.method == core::ParallaxMethod::Cone) core::write_cone_map(path, maps.cone);
+      else core::write_volume_map(path, maps.volume, key.at("shadetlm:map"));
+      ++built;
+    }
+    s.map_file = path;
+  }
+  return built;
+}
+
+}  // namespace shadetlm::app
