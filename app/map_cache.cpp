@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 #include "shadetlm/core/input_error.hpp"
 #include "shadetlm/core/parallax_map.hpp"
@@ -12,14 +13,27 @@ namespace shadetlm::app {
 
 namespace {
 
-// "<kind>-<16 hex digits>.exr": FNV-1a over the key's names and values and the version.
+// This program as a map's builder: its version, and its file's size and modification
+// time, which a rebuild changes even when the version (set when cmake last ran) does
+// not. A copy made with its times (cp -p, the Slurm submission's) is the same builder.
+std::string builder() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return core::kVersion;
+  const auto size = fs::file_size(self, ec);
+  const auto time = fs::last_write_time(self, ec).time_since_epoch().count();
+  return std::string(core::kVersion) + " " + std::to_string(size) + " " + std::to_string(time);
+}
+
+// "<kind>-<16 hex digits>.exr": FNV-1a over the key's names and values and the builder.
 std::string cache_name(const core::MapKey& key) {
   uint64_t h = 14695981039346656037ull;
   auto mix = [&h](const std::string& text) {
     for (unsigned char c : text + '\0') h = (h ^ c) * 1099511628211ull;
   };
   for (const auto& [name, value] : key) mix(name), mix(value);
-  mix(core::kVersion);
+  mix(builder());
   char digits[17];
   std::snprintf(digits, sizeof digits, "%016llx", static_cast<unsigned long long>(h));
   return key.at("shadetlm:map") + "-" + digits + ".exr";
@@ -33,7 +47,11 @@ int use_map_cache(core::Scene& scene, const std::string& dir) {
   fs::create_directories(dir, ec);
   if (!fs::is_directory(dir)) throw core::InputError("--map-cache", dir, "is not a folder and cannot be made one");
   int built = 0;
-  for (core::Material& m : scene.materials) {
+  std::vector<bool> used(scene.materials.size());  // maps only for what is drawn, as the pipeline
+  for (const core::Object& o : scene.objects) used[size_t(o.material)] = true;
+  for (size_t k = 0; k < scene.materials.size(); ++k) {
+    if (!used[k]) continue;
+    core::Material& m = scene.materials[k];
     core::ParallaxSettings& s = m.parallax;
     const bool reads_map = s.method == core::ParallaxMethod::Distance || s.method == core::ParallaxMethod::Cone;
     if (m.path != core::ShadingPath::Parallax || !reads_map || !s.map_file.empty() || m.height_map < 0) continue;

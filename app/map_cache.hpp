@@ -2,7 +2,8 @@
 // The map cache (render --map-cache DIR, or SHADETLM_MAP_CACHE): the parallax maps a
 // scene's materials read, built once and kept in DIR under a name made of everything
 // they depend on — the height field's checksum, the map's kind and parameters
-// (core::map_key) and the program's version — so that later runs, and the shards of a
+// (core::map_key) and the program that builds them (its version, its file's size and
+// modification time) — so that later runs, and the shards of a
 // sweep on a cluster sharing DIR, read them instead of building them again
 // (docs/parallax.md, docs/benchmarks.md).
 #include <string>

@@ -8,7 +8,15 @@ click: the reference in its place) | reference | |diff|x16 | error heat map with
 bar, and the figures.
 
 Usage: scripts/regress.py SHADETLM ROOT OUT [--scene NAME ...]
-REGEN_GOLDEN=1 rewrites the frames and stats that fail or are missing (never under CI)."""
+       scripts/regress.py SHADETLM ROOT OUT --shard I/N [--scene NAME ...]
+       scripts/regress.py SHADETLM ROOT OUT --merge
+       scripts/regress.py SHADETLM ROOT OUT --list [--scene NAME ...]   the number of configurations
+REGEN_GOLDEN=1 rewrites the frames and stats that fail or are missing (never under CI).
+--shard I/N measures every N-th configuration from the I-th into OUT/shards/regress-I-of-N.json
+(a Slurm array task of scripts/slurm.py, which writes OUT/manifest.json with N); --merge
+writes the report (and does what REGEN asks) from all N shards, once all are there (else
+it exits 2 naming the missing ones). OUT/rows.json holds every row the report shows."""
+import argparse
 import html
 import json
 import math
@@ -17,8 +25,18 @@ import shutil
 import subprocess
 import sys
 
-BIN, ROOT, OUT = sys.argv[1], sys.argv[2], sys.argv[3]
-ONLY = [sys.argv[i + 1] for i, a in enumerate(sys.argv[:-1]) if a == "--scene"]
+import shards
+
+parser = argparse.ArgumentParser(description="golden-image regression: see the module's docstring")
+parser.add_argument("bin")
+parser.add_argument("root")
+parser.add_argument("out")
+parser.add_argument("--scene", action="append", default=[])
+parser.add_argument("--shard")
+parser.add_argument("--merge", action="store_true")
+parser.add_argument("--list", action="store_true", help="print the number of configurations")
+ARGS = parser.parse_args()
+BIN, ROOT, OUT, ONLY = ARGS.bin, ARGS.root, ARGS.out, ARGS.scene
 REGEN = os.environ.get("REGEN_GOLDEN") == "1" and "CI" not in os.environ
 LAYERS = [("RGB", "rgb"), ("A", "rgb"), ("Z", "z"), ("N", "n")]  # A (coverage) at the colour threshold
 
@@ -46,120 +64,165 @@ def moved_blocks(now, then, tolerance):
             if b not in now or b not in then or not within(now[b], then[b], tolerance)]
 
 
-rows, changed = [], []
-scenes = sorted(d for d in os.listdir(os.path.join(ROOT, "golden"))
-                if os.path.isfile(os.path.join(ROOT, "golden", d, "golden.json")))
-for scene in scenes:
-    if ONLY and scene not in ONLY:
-        continue
-    gdir = os.path.join(ROOT, "golden", scene)
-    with open(os.path.join(gdir, "golden.json")) as f:
-        spec = json.load(f)
-    configs = [("default", [], spec["accuracy"])]
-    for name, c in spec.get("configurations", {}).items():
-        configs.append((name, c["set"], c["accuracy"]))
-    for config, sets, accuracy in configs:
-        suffix = "" if config == "default" else "." + config
-        accepted, accepted_stats = os.path.join(gdir, "frame%s.exr" % suffix), os.path.join(gdir, "stats%s.json" % suffix)
-        work = os.path.join(OUT, scene, config)
-        os.makedirs(work, exist_ok=True)
-        new, new_stats = os.path.join(work, "new.exr"), os.path.join(work, "stats.json")
-        cmd = [BIN, "render", os.path.join(gdir, "scene.json"), "-o", new, "--stats", new_stats, "--compare-reference"]
-        for s in sets:
-            cmd += ["--set", s]
-        if not os.path.exists(accepted):  # compare draws no images then: the report still shows the new frame
-            cmd += ["--preview", os.path.join(work, "img-new.png")]
-        r = run(cmd)
-        # Accuracy problems stay failures whatever REGEN does: it cannot fix them.
-        row = {"scene": scene, "config": config, "sets": sets, "problems": [], "accuracy_problems": [], "layers": {},
-               "tolerance": spec["regression"], "files": []}
-        if r.returncode != 0:
-            row["accuracy_problems"].append("render failed: " + r.stderr.strip())
-            rows.append(row)
-            print("%-16s %-20s FAIL: render failed" % (scene, config), file=sys.stderr)
+def configurations():
+    """(scene, configuration, its --set list, its accuracy gate, the scene's golden.json) in order."""
+    out = []
+    scenes = sorted(d for d in os.listdir(os.path.join(ROOT, "golden"))
+                    if os.path.isfile(os.path.join(ROOT, "golden", d, "golden.json")))
+    for scene in scenes:
+        if ONLY and scene not in ONLY:
             continue
-        with open(new_stats) as f:
-            stats = json.load(f)
-        # Accuracy against the golden model.
-        err = stats["error"]["rgb"]
-        row["accuracy"] = {"max": figure(err["max"]), "frame_max": figure(err["frame"]["max"]),
-                           "psnr": figure(err["psnr"]), "pixels": err["pixels"],
-                           "truth": stats["error"]["truth"], "gate": accuracy}
-        # Written so that NaN fails.
-        if "rgb_min_psnr" in accuracy and not figure(err["psnr"]) >= accuracy["rgb_min_psnr"]:
-            row["accuracy_problems"].append("accuracy: PSNR %.1f dB below %.1f" % (figure(err["psnr"]), accuracy["rgb_min_psnr"]))
-        # rgb_max holds for every pixel of the frame (as testbenches/test_golden.cpp checks).
-        if "rgb_max" in accuracy and not figure(err["frame"]["max"]) <= accuracy["rgb_max"]:
-            row["accuracy_problems"].append("accuracy: max error %.3g over %.3g" % (figure(err["frame"]["max"]), accuracy["rgb_max"]))
-        # Regression per layer against the accepted frame.
-        frame_ok = os.path.exists(accepted)
-        if not frame_ok:
-            row["problems"].append("no accepted frame " + os.path.relpath(accepted, ROOT))
+        with open(os.path.join(ROOT, "golden", scene, "golden.json")) as f:
+            spec = json.load(f)
+        out.append((scene, "default", [], spec["accuracy"], spec))
+        for name, c in spec.get("configurations", {}).items():
+            out.append((scene, name, c["set"], c["accuracy"], spec))
+    return out
+
+
+def accepted_paths(scene, config):
+    gdir = os.path.join(ROOT, "golden", scene)
+    suffix = "" if config == "default" else "." + config
+    return os.path.join(gdir, "frame%s.exr" % suffix), os.path.join(gdir, "stats%s.json" % suffix)
+
+
+def measure(scene, config, sets, accuracy, spec):
+    """One configuration rendered and judged: its row of the report (REGEN not applied)."""
+    gdir = os.path.join(ROOT, "golden", scene)
+    accepted, accepted_stats = accepted_paths(scene, config)
+    work = os.path.join(OUT, scene, config)
+    os.makedirs(work, exist_ok=True)
+    new, new_stats = os.path.join(work, "new.exr"), os.path.join(work, "stats.json")
+    cmd = [BIN, "render", os.path.join(gdir, "scene.json"), "-o", new, "--stats", new_stats, "--compare-reference"]
+    for s in sets:
+        cmd += ["--set", s]
+    if not os.path.exists(accepted):  # compare draws no images then: the report still shows the new frame
+        cmd += ["--preview", os.path.join(work, "img-new.png")]
+    r = run(cmd)
+    # Accuracy problems stay failures whatever REGEN does: it cannot fix them.
+    row = {"scene": scene, "config": config, "sets": sets, "problems": [], "accuracy_problems": [], "layers": {},
+           "tolerance": spec["regression"], "files": []}
+    if r.returncode != 0:
+        row["accuracy_problems"].append("render failed: " + r.stderr.strip())
+        return row
+    with open(new_stats) as f:
+        stats = json.load(f)
+    # Accuracy against the golden model.
+    err = stats["error"]["rgb"]
+    row["accuracy"] = {"max": figure(err["max"]), "frame_max": figure(err["frame"]["max"]),
+                       "psnr": figure(err["psnr"]), "pixels": err["pixels"],
+                       "truth": stats["error"]["truth"], "gate": accuracy}
+    # Written so that NaN fails.
+    if "rgb_min_psnr" in accuracy and not figure(err["psnr"]) >= accuracy["rgb_min_psnr"]:
+        row["accuracy_problems"].append("accuracy: PSNR %.1f dB below %.1f" % (figure(err["psnr"]), accuracy["rgb_min_psnr"]))
+    # rgb_max holds for every pixel of the frame (as testbenches/test_golden.cpp checks).
+    if "rgb_max" in accuracy and not figure(err["frame"]["max"]) <= accuracy["rgb_max"]:
+        row["accuracy_problems"].append("accuracy: max error %.3g over %.3g" % (figure(err["frame"]["max"]), accuracy["rgb_max"]))
+    # Regression per layer against the accepted frame.
+    frame_ok = os.path.exists(accepted)
+    if not frame_ok:
+        row["problems"].append("no accepted frame " + os.path.relpath(accepted, ROOT))
+    else:
+        for layer, key in LAYERS:
+            args = [BIN, "compare", new, accepted, "--layer", layer, "--fail", str(spec["regression"][key]), "--json"]
+            if layer == "RGB":
+                args += ["--images", os.path.join(work, "img")]
+            c = run(args)
+            try:
+                result = json.loads(c.stdout)
+            except ValueError:
+                result = {"problem": c.stderr.strip() or "compare failed"}
+            if layer not in result.get("layers", {}):  # another resolution, a channel missing, unreadable
+                frame_ok = False
+                row["problems"].append("%s: %s" % (layer, result.get("problem", "not comparable")))
+                continue
+            m = result["layers"][layer]
+            row["layers"][layer] = m
+            if not m["pass"]:
+                frame_ok = False
+                row["problems"].append("%s: %.3g %% of the frame's pixels over %g (largest: %.3g)" % (
+                    layer, m["over_percent"], spec["regression"][key], figure(m["frame"]["max"])))
+    # Cycles against the accepted stats.
+    now = cycles_of(stats)
+    row["cycles"] = {"now": now["frame_cycles"], "then": None, "tolerance": spec["cycles"]["tolerance"], "moved": []}
+    cycles_ok = os.path.exists(accepted_stats)
+    if cycles_ok:
+        with open(accepted_stats) as f:
+            then = json.load(f)
+        row["cycles"]["then"] = then["frame_cycles"]
+        tol = spec["cycles"]["tolerance"]
+        cycles_ok = within(now["frame_cycles"], then["frame_cycles"], tol) and \
+            set(now["busy_cycles"]) == set(then["busy_cycles"]) and \
+            all(within(v, then["busy_cycles"][b], tol) for b, v in now["busy_cycles"].items())
+        row["cycles"]["moved"] = moved_blocks(now["busy_cycles"], then["busy_cycles"], tol)
+        if not cycles_ok:
+            row["problems"].append("cycles: %d now, %d accepted (tolerance %g)" % (
+                now["frame_cycles"], then["frame_cycles"], tol))
+    else:
+        row["problems"].append("no accepted stats " + os.path.relpath(accepted_stats, ROOT))
+    # What REGEN_GOLDEN=1 rewrites for this row (the report's accept commands).
+    row["files"] = [os.path.relpath(p, ROOT) for p, ok in ((accepted, frame_ok), (accepted_stats, cycles_ok)) if not ok]
+    row["now_cycles"] = now
+    return row
+
+
+def regenerate(row):
+    """REGEN_GOLDEN=1: the row's failing frame or cycles accepted, unless it fails its
+    accuracy gate (docs/regression.md)."""
+    if not (REGEN and row["files"] and not row["accuracy_problems"]):
+        return
+    accepted, accepted_stats = accepted_paths(row["scene"], row["config"])
+    for path in row["files"]:
+        if path == os.path.relpath(accepted, ROOT):
+            shutil.copyfile(os.path.join(OUT, row["scene"], row["config"], "new.exr"), accepted)
         else:
-            for layer, key in LAYERS:
-                args = [BIN, "compare", new, accepted, "--layer", layer, "--fail", str(spec["regression"][key]), "--json"]
-                if layer == "RGB":
-                    args += ["--images", os.path.join(work, "img")]
-                c = run(args)
-                try:
-                    result = json.loads(c.stdout)
-                except ValueError:
-                    result = {"problem": c.stderr.strip() or "compare failed"}
-                if layer not in result.get("layers", {}):  # another resolution, a channel missing, unreadable
-                    frame_ok = False
-                    row["problems"].append("%s: %s" % (layer, result.get("problem", "not comparable")))
-                    continue
-                m = result["layers"][layer]
-                row["layers"][layer] = m
-                if not m["pass"]:
-                    frame_ok = False
-                    row["problems"].append("%s: %.3g %% of the frame's pixels over %g (largest: %.3g)" % (
-                        layer, m["over_percent"], spec["regression"][key], figure(m["frame"]["max"])))
-        # Cycles against the accepted stats.
-        now = cycles_of(stats)
-        row["cycles"] = {"now": now["frame_cycles"], "then": None, "tolerance": spec["cycles"]["tolerance"], "moved": []}
-        cycles_ok = os.path.exists(accepted_stats)
-        if cycles_ok:
-            with open(accepted_stats) as f:
-                then = json.load(f)
-            row["cycles"]["then"] = then["frame_cycles"]
-            tol = spec["cycles"]["tolerance"]
-            cycles_ok = within(now["frame_cycles"], then["frame_cycles"], tol) and \
-                set(now["busy_cycles"]) == set(then["busy_cycles"]) and \
-                all(within(v, then["busy_cycles"][b], tol) for b, v in now["busy_cycles"].items())
-            row["cycles"]["moved"] = moved_blocks(now["busy_cycles"], then["busy_cycles"], tol)
-            if not cycles_ok:
-                row["problems"].append("cycles: %d now, %d accepted (tolerance %g)" % (
-                    now["frame_cycles"], then["frame_cycles"], tol))
-        else:
-            row["problems"].append("no accepted stats " + os.path.relpath(accepted_stats, ROOT))
-        # What REGEN_GOLDEN=1 rewrites for this row (the report's accept commands).
-        row["files"] = [os.path.relpath(p, ROOT) for p, ok in ((accepted, frame_ok), (accepted_stats, cycles_ok)) if not ok]
-        # A frame or cycles that fail the accuracy gate are never accepted (docs/regression.md).
-        if REGEN and (not frame_ok or not cycles_ok) and not row["accuracy_problems"]:
-            if not frame_ok:
-                shutil.copyfile(new, accepted)
-            if not cycles_ok:
-                with open(accepted_stats, "w") as f:
-                    json.dump(now, f, indent=2)
-                    f.write("\n")
-            changed.append("%s/%s: %s" % (scene, config, "; ".join(row["problems"])))
-            row["problems"] = ["rewritten (REGEN_GOLDEN=1): " + p for p in row["problems"]]
-            row["regenerated"] = True
-        rows.append(row)
-        status = "FAIL" if row["accuracy_problems"] or (row["problems"] and not row.get("regenerated")) else \
-            "rewritten" if row.get("regenerated") else "ok"
-        shown = row["accuracy_problems"] + row["problems"]
-        print("%-16s %-20s %s%s" % (scene, config, status, "" if not shown else ": " + "; ".join(shown)), file=sys.stderr)
+            with open(accepted_stats, "w") as f:
+                json.dump(row["now_cycles"], f, indent=2)
+                f.write("\n")
+    changed.append("%s/%s: %s" % (row["scene"], row["config"], "; ".join(row["problems"])))
+    row["problems"] = ["rewritten (REGEN_GOLDEN=1): " + p for p in row["problems"]]
+    row["regenerated"] = True
+
+
+def tell(row):
+    status = "FAIL" if failing(row) else "rewritten" if row.get("regenerated") else "ok"
+    shown = [p.splitlines()[0] if p else p for p in row["accuracy_problems"] + row["problems"]]  # the report has the rest
+    print("%-16s %-20s %s%s" % (row["scene"], row["config"], status, "" if not shown else ": " + "; ".join(shown)),
+          file=sys.stderr)
+
+
+def failing(r):
+    return bool(r["accuracy_problems"]) or (bool(r["problems"]) and not r.get("regenerated"))
+
+
+rows, changed = [], []
+if ARGS.list:
+    print(len(configurations()))
+    sys.exit(0)
+if ARGS.shard:
+    shard, count = shards.parse(ARGS.shard)
+    measured = [measure(*c) for c in shards.mine(configurations(), shard, count)]
+    shards.write_atomically(shards.shard_path(OUT, "regress", shard, count, "json"), json.dumps(measured))
+    sys.exit(0)
+if ARGS.merge:
+    for path in shards.collect(OUT, "regress", "json"):
+        with open(path) as f:
+            rows += json.load(f)
+    order = {(c[0], c[1]): k for k, c in enumerate(configurations())}  # a local run's order
+    rows.sort(key=lambda r: order.get((r["scene"], r["config"]), len(order)))
+    for r in rows:
+        regenerate(r)
+        tell(r)
+else:
+    for c in configurations():
+        rows.append(measure(*c))
+        regenerate(rows[-1])
+        tell(rows[-1])
 
 if ONLY and not rows:
     sys.exit("regress: no golden scene named " + ", ".join(ONLY))
 # The report (docs/regression.md, "The report"): failures first, then rewritten rows, then the
 # rest, each scene's configurations in golden.json's order.
-def failing(r):
-    return bool(r["accuracy_problems"]) or (bool(r["problems"]) and not r.get("regenerated"))
-
-
 def state(r):
     return "fail" if failing(r) else "rewritten" if r.get("regenerated") else "ok"
 
@@ -419,8 +482,9 @@ out = ['<!doctype html><html lang="en"><meta charset="utf-8"><title>shadetlm reg
        "<p>Thresholds and their reasons: golden/&lt;scene&gt;/golden.json; docs/regression.md.</p>",
        HEAD % legend(labels=(6, 4, 2))]
 out += [row_html(r) for r in rows]
-with open(os.path.join(OUT, "index.html"), "w") as f:
-    f.write("\n".join(out))
+# Every row as the report shows it (a Slurm run's merge and a local run give the same).
+shards.write_atomically(os.path.join(OUT, "rows.json"), json.dumps(rows, indent=1, sort_keys=True) + "\n")
+shards.write_atomically(os.path.join(OUT, "index.html"), "\n".join(out))
 print("%d configurations, %d failing; report: %s" % (len(rows), len(failed), os.path.join(OUT, "index.html")))
 for c in changed:
     print("REGEN_GOLDEN rewrote " + c)

@@ -19,7 +19,9 @@ packages=(
   verilator           # RTL in the loop (docs/rtl.md): the normalize unit verilated into SystemC
   yosys               # its synthesis to generic cells (scripts/synth.sh, the rtl test)
 )
-# Packages a script needs beyond these (scripts/plot.sh: gnuplot-nox) come as arguments.
+# Packages a script needs beyond these come as arguments: scripts/plot.sh gnuplot-nox;
+# scripts/test.sh and scripts/cluster-bench.sh slurm-wlm's daemons for a single-node
+# Slurm (not in every build's list: Debian enables munge's and Slurm's services).
 packages+=("$@")
 
 missing=()

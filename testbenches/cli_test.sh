@@ -180,7 +180,7 @@ expect_output px-map-file-steep "map_file"
 check px-cache-build 0 "$bin" render "${px[@]}" -o "$tmp/px/c1.exr" --map-cache "$tmp/px/cache"
 cached=$(ls "$tmp/px/cache")
 [[ $cached == refined-*.exr ]] && ((passes++)) || { echo "FAIL px-cache-build: the cache holds '$cached'"; ((failures++)); }
-touch -d '2000-01-01' "$tmp/px/cache/$cached"
+touch -d @946684800 "$tmp/px/cache/$cached"
 SHADETLM_MAP_CACHE=$tmp/px/cache check px-cache-read 0 "$bin" render "${px[@]}" -o "$tmp/px/c2.exr"
 [[ $(ls "$tmp/px/cache") == "$cached" && $(stat -c %Y "$tmp/px/cache/$cached") == 946684800 ]] && ((passes++)) ||
   { echo "FAIL px-cache-read: the cached map was built again"; ((failures++)); }
