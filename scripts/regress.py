@@ -196,6 +196,10 @@ def failing(r):
 
 
 rows, changed = [], []
+unknown = [s for s in ONLY if not os.path.isfile(os.path.join(ROOT, "golden", s, "golden.json"))]
+if unknown:
+    print("regress: no golden scene named %s (golden/<scene>/golden.json)" % ", ".join(unknown), file=sys.stderr)
+    sys.exit(2)
 if ARGS.list:
     print(len(configurations()))
     sys.exit(0)

@@ -12,7 +12,7 @@
 #   scripts/slurm-local.sh stop DIR           stops the daemons and removes DIR
 set -euo pipefail
 command=${1:-} dir=${2:-}
-[[ ($command == start || $command == stop) && -n $dir ]] || { sed -n '2,14p' "$0" >&2; exit 2; }
+[[ ($command == start || $command == stop) && -n $dir ]] || { sed -n '2,12p' "$0" >&2; exit 2; }
 sbin=/usr/sbin
 
 stop() {
@@ -45,7 +45,7 @@ cpus=${3:-$(nproc)} nodes=${4:-1}
 mkdir -p "$dir"/{state,spool,log,munge}
 dir=$(cd "$dir" && pwd)
 chmod 700 "$dir" "$dir/munge"
-trap 'stop; echo "slurm-local.sh: Slurm did not start; its logs were in $dir/log" >&2' ERR
+trap 'echo "slurm-local.sh: Slurm did not start; the end of its logs:" >&2; tail -n 5 "$dir"/log/* >&2; stop' ERR
 
 # munge: a key of our own, its socket in DIR (--force: munged refuses a socket folder
 # under /tmp, which is world-writable, without it).
@@ -90,6 +90,8 @@ JobCompType=jobcomp/none
 AccountingStorageType=accounting_storage/none
 JobAcctGatherType=jobacct_gather/none
 MaxArraySize=1001
+# The node as declared here, whatever slurmd finds (a 1-CPU machine still runs the tests).
+SlurmdParameters=config_overrides
 NodeName=$names NodeHostname=localhost NodeAddr=127.0.0.1 CPUs=$cpus State=UNKNOWN
 PartitionName=local Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 CONF

@@ -66,7 +66,11 @@ def check_slurm():
         if not shutil.which(tool):
             die("no Slurm on this machine: %s is not on the PATH (a login node of the cluster has it; "
                 "scripts/slurm-local.sh starts a single-node Slurm for tests)" % tool)
-    r = subprocess.run(["scontrol", "ping"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=120)
+    try:
+        r = subprocess.run(["scontrol", "ping"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=120)
+    except subprocess.TimeoutExpired:
+        die("the Slurm controller does not answer (scontrol ping took over 120 s); SLURM_CONF=%s" %
+            os.environ.get("SLURM_CONF", "(default)"))
     if r.returncode != 0 or "is UP" not in r.stdout:
         die("the Slurm controller does not answer (scontrol ping: %s); SLURM_CONF=%s" % (
             " ".join(w for w in r.stdout.split() if w.strip("*")) or "exit %d" % r.returncode, os.environ.get("SLURM_CONF", "(default)")))
@@ -98,7 +102,7 @@ def cluster(partition):
     found = False
     for line in slurm("sinfo", "-h", "-o", "%P %D %C").splitlines():
         name, count, load = line.split()
-        if name == partition or (partition is None and name.endswith("*")):
+        if name.rstrip("*") == partition or (partition is None and name.endswith("*")):
             found = True
             nodes += int(count)
             cpus += int(load.split("/")[3])  # allocated/idle/other/total
@@ -200,8 +204,15 @@ def submit_jobs(results, m, indices, sbatch_args):
 
 
 def queued(job_ids):
-    out = slurm("squeue", "-h", "-o", "%i %T", "-j", ",".join(job_ids)) if job_ids else ""
-    return [line.split() for line in out.splitlines() if line.strip()]
+    """(id, state) of those of the jobs still in the queue. A job Slurm has forgotten
+    (finished longer ago than MinJobAge) is no longer queued: squeue calls its id invalid."""
+    if not job_ids:
+        return []
+    r = subprocess.run(["squeue", "-h", "-o", "%i %T", "-j", ",".join(job_ids)], stdout=subprocess.PIPE,
+                       stderr=subprocess.PIPE, text=True, timeout=60)
+    if r.returncode != 0 and "Invalid job id" not in r.stderr:
+        die("squeue failed (exit %d): %s" % (r.returncode, r.stderr.strip()))
+    return [line.split() for line in r.stdout.splitlines() if line.strip()]
 
 
 def wait(results, m):
@@ -321,7 +332,13 @@ def resubmit(a, sbatch_args):
     if not gone and merge_status(results) is not None:
         print("%s: every shard is in and the merge ran (exit %d): nothing to do" % (results, merge_status(results)))
         return
-    submit_jobs(results, m, gone, sbatch_args or m["sbatch"])
+    try:  # a status from before shards went missing would pass for this merge's
+        os.remove(os.path.join(results, "merge.status"))
+    except FileNotFoundError:
+        pass
+    # The partition of the submission stays; other sbatch arguments may be given anew.
+    partition = [x for x in m["sbatch"] if x.startswith("--partition=")]
+    submit_jobs(results, m, gone, partition + sbatch_args if sbatch_args else m["sbatch"])
     if a.wait:
         wait(results, m)
 
@@ -337,6 +354,9 @@ def merge(a):
         cmd = ["python3", script("sweep"), m["program"], ROOT, "--merge", results, "--repeats", str(m["repeats"])]
     else:
         cmd = ["python3", script("regress"), m["program"], ROOT, results, "--merge"]
+    rows = os.path.join(results, "rows.json")  # regress: written only by a merge that ran to its end
+    if os.path.exists(rows):
+        os.remove(rows)
     rc = subprocess.run(cmd + m["args"]).returncode
     if rc == 0 and m["kind"] == "sweep":
         plots = os.path.join(results, "plots")
@@ -347,7 +367,7 @@ def merge(a):
                              plots], stdout=subprocess.DEVNULL).returncode != 0:
             print("slurm: the plots failed (the CSV is merged): scripts/plot.py %s %s" % (
                 os.path.join(results, "sweep.csv"), plots), file=sys.stderr)
-    if rc == 0 or (rc == 1 and m["kind"] == "regress"):  # regress.py's 1: a configuration fails
+    if rc == 0 or (rc == 1 and m["kind"] == "regress" and os.path.exists(rows)):  # regress.py's 1: a configuration fails
         shards.write_atomically(os.path.join(results, "merge.status"), "%d\n" % rc)
     return rc
 
@@ -383,6 +403,8 @@ def main():
             die("--match, --resolution, --map-cache and --repeats are the sweep's; the regression takes --scene")
         if a.kind == "sweep" and a.scene:
             die("--scene is the regression's; the sweep takes --match")
+        if any(x == "-p" or x.startswith(("--partition", "-p")) for x in sbatch_args):
+            die("give the partition as --partition P (before --): the shard count and the checks follow it")
         if a.partition:
             sbatch_args = ["--partition=" + a.partition] + sbatch_args
         submit(a, sbatch_args)

@@ -22,7 +22,8 @@ while [[ ${1:-} == --* ]]; do
       [[ ${2:-} =~ ^[0-9]+$ ]] || { echo "sweep.sh: --repeats takes a count (0: one concurrent time a run)" >&2; exit 2; }
       repeats=$2; shift 2 ;;
     --no-build) build=0; shift ;;
-    --results) results=${2:?--results takes a folder}; shift 2 ;;
+    --results) [[ -n ${2:-} ]] || { echo "sweep.sh: --results takes a folder" >&2; exit 2; }
+      results=$2; shift 2 ;;
     --match|--resolution|--map-cache) (($# > 1)) || { echo "sweep.sh: $1 takes a value" >&2; exit 2; }
       filters+=("$1" "$2"); shift 2 ;;
     --no-map-cache) filters+=("$1"); shift ;;
@@ -36,9 +37,10 @@ jobs=${1:-$(nproc)}
 [[ $jobs =~ ^[1-9][0-9]*$ ]] || { echo "sweep.sh: JOBS is a count of parallel shards, not '$jobs'" >&2; exit 2; }
 sweep=(python3 "$root/scripts/sweep.py" "$bin" "$root")
 mkdir -p "$results"
-rm -rf "$results/shards" "$results/sweep.csv"
-total=$("${sweep[@]}" --plan "$results" --shards "$jobs" "${filters[@]}")
+total=$("${sweep[@]}" --list "${filters[@]}")  # (a bad option stops here, the last results kept)
 ((total > 0)) || { echo "sweep.sh: no run matches ${filters[*]}" >&2; exit 2; }
+rm -rf "$results/shards" "$results/sweep.csv"
+"${sweep[@]}" --plan "$results" --shards "$jobs" "${filters[@]}" >/dev/null
 export SWEEP_ROOT=$root SWEEP_BIN=$bin SWEEP_JOBS=$jobs SWEEP_RESULTS=$results
 seq 0 $((jobs - 1)) | xargs -P "$jobs" -I{} sh -c \
   'exec python3 "$SWEEP_ROOT/scripts/sweep.py" "$SWEEP_BIN" "$SWEEP_ROOT" --shard {}/$SWEEP_JOBS --results "$SWEEP_RESULTS" "$@"' \

@@ -55,7 +55,8 @@ shards=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["shards
 ls "$tmp"/maps/*.exr >/dev/null 2>&1 || problem "no map in the map cache"
 
 # --- 2. A lost shard: the merge refuses (exit 2, nothing written), resubmit runs it again.
-rm "$tmp/sweep/shards/sweep-1-of-$shards.csv" "$tmp/sweep/sweep.csv" "$tmp/sweep/merge.status"
+# (merge.status stays from the first merge: resubmit must not take it for the new one's)
+rm "$tmp/sweep/shards/sweep-1-of-$shards.csv" "$tmp/sweep/sweep.csv"
 "${slurm[@]}" merge "$tmp/sweep" >"$tmp/out" 2>&1
 rc=$?
 ((rc == 2)) || problem "merge with a shard missing: exit $rc, expected 2"
