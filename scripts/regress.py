@@ -185,7 +185,7 @@ def regenerate(row):
 
 
 def tell(row):
-    status = "FAIL" if failing(row) else "rewritten" if row.get("regenerated") else "ok"
+    status = {"fail": "FAIL"}.get(state(row), state(row))
     shown = [p.splitlines()[0] if p else p for p in row["accuracy_problems"] + row["problems"]]  # the report has the rest
     print("%-16s %-20s %s%s" % (row["scene"], row["config"], status, "" if not shown else ": " + "; ".join(shown)),
           file=sys.stderr)
@@ -193,6 +193,10 @@ def tell(row):
 
 def failing(r):
     return bool(r["accuracy_problems"]) or (bool(r["problems"]) and not r.get("regenerated"))
+
+
+def state(r):
+    return "fail" if failing(r) else "rewritten" if r.get("regenerated") else "ok"
 
 
 rows, changed = [], []
@@ -227,10 +231,6 @@ if ONLY and not rows:
     sys.exit("regress: no golden scene named " + ", ".join(ONLY))
 # The report (docs/regression.md, "The report"): failures first, then rewritten rows, then the
 # rest, each scene's configurations in golden.json's order.
-def state(r):
-    return "fail" if failing(r) else "rewritten" if r.get("regenerated") else "ok"
-
-
 failed = [r for r in rows if failing(r)]
 rows.sort(key=lambda r: (["fail", "rewritten", "ok"].index(state(r)), r["scene"]))
 esc = html.escape
