@@ -27,7 +27,7 @@ void material_needs(const core::Scene& s, size_t material, int objects, std::vec
     const uint64_t cells = texels(s.textures[size_t(m.height_map)]);
     const core::ParallaxSettings& p = m.parallax;
     const uint64_t volume = cells * uint64_t(p.slices) * 4;
-    const uint64_t maps = p.method == core::ParallaxMethod::Distance ? volume * (p.refined ? 2 : 1)
+    const uint64_t maps = p.method == core::ParallaxMethod::Distance ? volume * (p.map == core::DistanceMap::Refined ? 2 : 1)
                           : p.method == core::ParallaxMethod::Cone   ? cells * 16
                                                                      : 0;
     needs.push_back({cells * 4 + maps, field + ".parallax.slices"});

@@ -1,4 +1,4 @@
-// shadetlm precompute distancemap|refinedmap|conemap HEIGHT -o map.exr [--slices D] …
+// shadetlm precompute boxgapmap|donnellymap|refinedmap|conemap HEIGHT -o map.exr [--slices D] …
 // shadetlm parallax-bench [SCENE] [--material M] [--elevations 60,30,15,5] [--json out.json]
 //
 // The parallax paper's maps, and the measurement behind docs/parallax.md: every tracer
@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -40,14 +41,16 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
     int slices = 16, levels = 0;
     core::RefinedParams refined;
   };
-  for (const char* kind : {"distancemap", "refinedmap", "conemap"}) {
+  for (const char* kind : {"boxgapmap", "donnellymap", "refinedmap", "conemap"}) {
     auto opt = std::make_shared<Options>();
     opt->output = std::string("out/") + kind + ".exr";
     const std::string k = kind;
     CLI::App* cmd = precompute->add_subcommand(
-        kind, k == "distancemap" ? "Donnelly's distance map (parallax, docs/parallax.md)"
-              : k == "refinedmap" ? "the parallax paper's refined distance map"
-                                  : "a safe cone map for cone stepping");
+        kind, k == "boxgapmap"     ? "the box-gap distance map, safe for nearest reads (parallax, docs/parallax.md)"
+              : k == "donnellymap" ? "Donnelly's Euclidean distance map, as published"
+              : k == "refinedmap"  ? "the parallax paper's refined distance map"
+                                   : "a safe cone map for cone stepping");
+    if (k == "boxgapmap") cmd->alias("distancemap");  // its name before Donnelly's map was built
     cmd->add_option("height", opt->height, "height map image (first channel, clamped to [0, 1])")->required();
     cmd->add_option("-o,--output", opt->output, "EXR to write")->capture_default_str()
       ->check(kNotEmpty);
@@ -100,12 +103,13 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
                         progress.phase("writing");
                         core::write_cone_map(opt->output, m);
                       } else {
-                        core::VolumeMap m = core::distance_map(f, opt->slices);
+                        core::VolumeMap m = k == "donnellymap" ? core::donnelly_map(f, opt->slices)
+                                                               : core::box_gap_map(f, opt->slices);
                         if (k == "refinedmap") m = core::refined_map(f, m, opt->refined);
                         seconds = seconds_since(start);
                         stamp(m.params);
                         progress.phase("writing");
-                        core::write_volume_map(opt->output, m, k == "refinedmap" ? "refined" : "distance");
+                        core::write_volume_map(opt->output, m, m.params.at("shadetlm:map"));
                       }
                       progress.done();
                       std::cout << "precompute " << k << ": " << opt->height << " (" << f.width << "x" << f.height
@@ -123,6 +127,7 @@ struct BenchOptions {
   SceneOptions scene;
   std::string material, json;
   std::vector<double> elevations{60, 30, 15, 5};
+  std::vector<double> margins;  // refined maps to measure; empty: the material's margin
   double azimuth = 30;
   int rays = 128;
 };
@@ -147,20 +152,28 @@ struct Method {
   core::ParallaxSettings s;
 };
 
-// The methods as a designer would line them up, each on the material's settings.
-std::vector<Method> methods_to_compare(const core::ParallaxSettings& base) {
+// The methods as a designer would line them up, each on the material's settings: the
+// refined map once per margin asked ("refined m=0.5"), or at the material's ("refined").
+std::vector<Method> methods_to_compare(const core::ParallaxSettings& base, const std::vector<double>& margins) {
   std::vector<Method> methods;
-  auto with = [&](const char* name, core::ParallaxMethod m, bool refined = true) {
+  auto with = [&](const std::string& name, core::ParallaxMethod m, core::DistanceMap map = core::DistanceMap::Refined) {
     core::ParallaxSettings s = base;
-    s.method = m, s.refined = refined;
+    s.method = m, s.map = map;
     methods.push_back({name, s});
   };
   with("offset", core::ParallaxMethod::Offset);
   with("steep", core::ParallaxMethod::Steep);
   with("pom", core::ParallaxMethod::Pom);
   with("relief", core::ParallaxMethod::Relief);
-  with("donnelly", core::ParallaxMethod::Distance, false);
-  with("refined", core::ParallaxMethod::Distance, true);
+  with("donnelly", core::ParallaxMethod::Distance, core::DistanceMap::Donnelly);
+  with("box-gap", core::ParallaxMethod::Distance, core::DistanceMap::BoxGap);
+  if (margins.empty()) with("refined", core::ParallaxMethod::Distance);
+  for (double margin : margins) {
+    std::ostringstream name;
+    name << "refined m=" << margin;
+    with(name.str(), core::ParallaxMethod::Distance);
+    methods.back().s.margin = margin;
+  }
   with("cone", core::ParallaxMethod::Cone);
   return methods;
 }
@@ -180,6 +193,7 @@ nlohmann::json bench_header(const BenchOptions& opt, const core::Scene& scene, c
           {"max_iterations", base.max_iterations},
           {"layers", {base.layers_min, base.layers_max}},
           {"binary_steps", base.binary_steps},
+          {"steps", base.steps},
           {"azimuth_deg", opt.azimuth},
           {"rays", opt.rays * opt.rays}};
 }
@@ -228,38 +242,45 @@ View view_at(double elevation, double azimuth, int rays, const core::Texture& he
   return view;
 }
 
-// Every ray of the view through one tracer (W × H texels); the mean time per ray into *ns_per_ray.
+// Every ray of the view through one tracer (W × H texels); the mean time per ray into
+// *ns_per_ray (a pass of its own, without counting), the operations of all into *ops.
 std::vector<modules::ParallaxTrace> trace_rays(const Method& method, const modules::ParallaxMaps& maps,
-                                               const View& view, double W, double H, double* ns_per_ray) {
+                                               const View& view, double W, double H, double* ns_per_ray,
+                                               modules::Ops* ops) {
   const auto& entries = view.entries;
   const glm::dvec3& d = view.direction;
   std::vector<modules::ParallaxTrace> traces(entries.size());
+  auto trace = [&](size_t r, modules::Ops* counted) {
+    return modules::trace_parallax(method.s, maps, float(entries[r].x * W - 0.5), float((1 - entries[r].y) * H - 0.5),
+                                   float(d.x), float(d.y), float(d.z), counted);
+  };
   const auto start = std::chrono::steady_clock::now();
-  for (size_t r = 0; r < entries.size(); ++r)
-    traces[r] = modules::trace_parallax(method.s, maps, float(entries[r].x * W - 0.5),
-                                        float((1 - entries[r].y) * H - 0.5), float(d.x), float(d.y), float(d.z));
+  for (size_t r = 0; r < entries.size(); ++r) traces[r] = trace(r, nullptr);
   *ns_per_ray = seconds_since(start) * 1e9 / double(entries.size());
+  for (size_t r = 0; r < entries.size(); ++r) trace(r, ops);
   return traces;
 }
 
 // One tracer's results on a view, ray by ray and summed, against the exact hits.
 struct RayFigures {
   std::vector<int> iterations;
-  std::vector<double> error;  // uv error, texels
-  double fetches = 0, overshoot = 0, skips = 0;
-  size_t more_than_donnelly = 0;
+  std::vector<double> cycles;  // parallax_cycles
+  std::vector<double> error;   // uv error, texels
+  double fetches = 0, overshoot = 0, skips = 0, cells = 0;
+  size_t more_than_box_gap = 0;
   size_t wrong_layer = 0, past_hit = 0;
 };
 
 // Compares the traces with the exact hits (W × H texels); `refined` counts the rays that
-// took more iterations than Donnelly's map did on the same ray (donnelly_iterations).
+// took more iterations than the box-gap map did on the same ray (box_gap_iterations).
 RayFigures compare_with_exact(const std::vector<modules::ParallaxTrace>& traces, const View& view, double W,
-                              double H, bool refined, const std::vector<int>& donnelly_iterations) {
+                              double H, int64_t cell_cycles, bool refined, const std::vector<int>& box_gap_iterations) {
   const auto& entries = view.entries;
   const auto& exact = view.exact;
   const glm::dvec3& d = view.direction;
   RayFigures results;
   results.iterations.resize(entries.size());
+  results.cycles.resize(entries.size());
   results.error.resize(entries.size());
   for (size_t r = 0; r < entries.size(); ++r) {
     const auto& t = traces[r];
@@ -269,9 +290,11 @@ RayFigures compare_with_exact(const std::vector<modules::ParallaxTrace>& traces,
     eu -= W * std::round(eu / W), ev -= H * std::round(ev / H);
     results.error[r] = std::sqrt(eu * eu + ev * ev);
     results.iterations[r] = t.iterations;
+    results.cycles[r] = double(modules::parallax_cycles(t, cell_cycles));
     results.fetches += t.fetches;
     results.skips += t.skips;
-    if (refined && t.iterations > donnelly_iterations[r]) ++results.more_than_donnelly;
+    results.cells += t.cells;
+    if (refined && t.iterations > box_gap_iterations[r]) ++results.more_than_box_gap;
     // Where along the ray the result lies (its projection), against the hit.
     const double du = (u - entries[r].x) * W, dv = (v - entries[r].y) * H;
     const double along = (du * d.x * W + dv * d.y * H) / (d.x * W * d.x * W + d.y * H * d.y * H + 1e-300);
@@ -289,16 +312,29 @@ double percentile(std::vector<double> v, double p) {
   return v.empty() ? 0.0 : v[std::min(v.size() - 1, size_t(p * double(v.size())))];
 }
 
-// One tracer's figures on a view, as written: means, 95th percentiles and maxima per ray.
-nlohmann::json method_figures(const RayFigures& results, double ns_per_ray) {
+// Mean, 95th percentile and maximum of v.
+nlohmann::json spread(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v) sum += x;
+  return {{"mean", v.empty() ? 0.0 : sum / double(v.size())}, {"p95", percentile(v, 0.95)}, {"max", percentile(v, 1.0)}};
+}
+
+// One tracer's figures on a view, as written: means, 95th percentiles and maxima per ray;
+// operations per ray (arithmetic: every kind but fetches).
+nlohmann::json method_figures(const RayFigures& results, const modules::Ops& ops, double ns_per_ray) {
   std::vector<double> it(results.iterations.begin(), results.iterations.end());
-  double it_sum = 0, err_sum = 0;
-  for (double x : it) it_sum += x;
+  double err_sum = 0;
   for (double x : results.error) err_sum += x;
   const double n = double(results.iterations.size());
-  return {{"iterations", {{"mean", it_sum / n}, {"p95", percentile(it, 0.95)}, {"max", percentile(it, 1.0)}}},
+  const double arithmetic = double(ops.total() - ops.fetch);
+  return {{"iterations", spread(it)},
+          {"cycles", spread(results.cycles)},
+          {"ops", arithmetic / n},
+          {"ops_by_kind", {{"add", double(ops.add) / n}, {"mul", double(ops.mul) / n}, {"div", double(ops.div) / n},
+                           {"sqrt", double(ops.sqrt + ops.rsqrt) / n}}},
           {"fetches", results.fetches / n},
           {"skips", results.skips / n},
+          {"cells", results.cells / n},
           {"uv_error_texels",
            {{"mean", err_sum / n}, {"p95", percentile(results.error, 0.95)}, {"max", percentile(results.error, 1.0)}}},
           {"wrong_layer", double(results.wrong_layer) / n},
@@ -307,17 +343,19 @@ nlohmann::json method_figures(const RayFigures& results, double ns_per_ray) {
           {"ns_per_ray", ns_per_ray}};
 }
 
-// Runs one tracer on every ray of a view and returns its figures; Donnelly's iterations
-// are kept (donnelly_iterations, per ray) for the refined map's per-ray gate.
+// Runs one tracer on every ray of a view and returns its figures; the box-gap map's
+// iterations are kept (box_gap_iterations, per ray) for the refined map's per-ray gate.
 nlohmann::json measure_method(const Method& method, const modules::ParallaxMaps& maps, const View& view,
-                              const core::Texture& height, std::vector<int>& donnelly_iterations) {
+                              const core::Texture& height, int64_t cell_cycles, std::vector<int>& box_gap_iterations) {
   const double W = height.width, H = height.height;
   double ns = 0;
-  const std::vector<modules::ParallaxTrace> traces = trace_rays(method, maps, view, W, H, &ns);
-  const RayFigures results = compare_with_exact(traces, view, W, H, method.name == "refined", donnelly_iterations);
-  nlohmann::json figures = method_figures(results, ns);
-  if (method.name == "donnelly") donnelly_iterations = results.iterations;
-  if (method.name == "refined") figures["rays_over_donnelly"] = results.more_than_donnelly;
+  modules::Ops ops;
+  const std::vector<modules::ParallaxTrace> traces = trace_rays(method, maps, view, W, H, &ns, &ops);
+  const bool refined = method.name.rfind("refined", 0) == 0;
+  const RayFigures results = compare_with_exact(traces, view, W, H, cell_cycles, refined, box_gap_iterations);
+  nlohmann::json figures = method_figures(results, ops, ns);
+  if (method.name == "box-gap") box_gap_iterations = results.iterations;
+  if (refined) figures["rays_over_box_gap"] = results.more_than_box_gap;
   return figures;
 }
 
@@ -340,7 +378,8 @@ void print_table(const nlohmann::json& views) {
                 << m["uv_error_texels"]["p95"].get<double>() << " / " << m["uv_error_texels"]["max"].get<double>()
                 << " texels, wrong layer " << m["wrong_layer"].get<double>() << ", overshoot "
                 << m["max_overshoot_voxels"].get<double>() << " voxels, " << m["ns_per_ray"].get<double>() << " ns"
-                << (m.contains("rays_over_donnelly") ? ", rays over donnelly " + m["rays_over_donnelly"].dump() : "")
+                << ", " << m["cycles"]["mean"].get<double>() << " cycles, " << m["ops"].get<double>() << " ops"
+                << (m.contains("rays_over_box_gap") ? ", rays over box-gap " + m["rays_over_box_gap"].dump() : "")
                 << "\n";
   }
 }
@@ -358,6 +397,10 @@ Command add_parallax_bench_command(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str()
       ->check(finite_in(0.5, 89.0));  // the along-ray measures project on the sideways direction
+  cmd->add_option("--margins", opt->margins,
+                  "refined maps to measure, one per margin in voxels (default: the material's margin)")
+      ->delimiter(',')
+      ->check(finite_in(0.0, 64.0));
   cmd->add_option("--azimuth", opt->azimuth, "view azimuth from the u axis, degrees")
       ->capture_default_str()
       ->check(finite_in(-360, 360));
@@ -372,17 +415,19 @@ Command add_parallax_bench_command(CLI::App& app) {
             const core::Material& mat = parallax_material(scene, opt->material);
             const core::Texture& height = scene.textures[size_t(mat.height_map)];
             const core::ParallaxSettings base = mat.parallax;
-            const std::vector<Method> methods = methods_to_compare(base);
+            const std::vector<Method> methods = methods_to_compare(base, opt->margins);
             nlohmann::json out = bench_header(*opt, scene, mat, height);
+            const int64_t cell_cycles = modules::parallax_cell_cycles(settings_of(scene));
+            out["cell_cycles"] = cell_cycles;
             const std::vector<modules::ParallaxMaps> maps = build_maps(methods, height, scene.file, out);
-            std::vector<int> donnelly_iterations;  // per ray, for the refined map's per-ray gate
+            std::vector<int> box_gap_iterations;  // per ray, for the refined map's per-ray gate
             for (double elevation : opt->elevations) {
               const View view = view_at(elevation, opt->azimuth, opt->rays, height, base);
               nlohmann::json figures = {{"elevation_deg", elevation},
                                         {"tracer_elevation_deg", view.tracer_elevation_deg}};
               for (size_t k = 0; k < methods.size(); ++k)
                 figures["methods"][methods[k].name] =
-                    measure_method(methods[k], maps[k], view, height, donnelly_iterations);
+                    measure_method(methods[k], maps[k], view, height, cell_cycles, box_gap_iterations);
               out["views"].push_back(figures);
             }
             write_figures(opt->json, out);

@@ -38,6 +38,24 @@ float VolumeMap::sample(float x, float y, float z) const {
   return at(i, j, k);
 }
 
+float VolumeMap::trilinear(float x, float y, float z) const {
+  const float gx = x - 0.5f, gy = y - 0.5f, gz = std::clamp(z - 0.5f, 0.0f, float(slices - 1));
+  const float fx = std::floor(gx), fy = std::floor(gy), fz = std::floor(gz);
+  const float a = gx - fx, b = gy - fy, c = gz - fz;
+  int i0 = int(fx) % width, j0 = int(fy) % height;
+  if (i0 < 0) i0 += width;
+  if (j0 < 0) j0 += height;
+  const int i1 = (i0 + 1) % width, j1 = (j0 + 1) % height;
+  const int k0 = int(fz), k1 = std::min(k0 + 1, slices - 1);
+  auto plane = [&](int k) {
+    const float top = at(i0, j0, k) + (at(i1, j0, k) - at(i0, j0, k)) * a;
+    const float bottom = at(i0, j1, k) + (at(i1, j1, k) - at(i0, j1, k)) * a;
+    return top + (bottom - top) * b;
+  };
+  const float p0 = plane(k0), p1 = plane(k1);
+  return p0 + (p1 - p0) * c;
+}
+
 std::vector<float> cell_tops(const HeightField& f) {
   std::vector<float> top(f.h.size());
   for (int j = 0; j < f.height; ++j)
@@ -54,11 +72,12 @@ constexpr float kFar = 1e20f;  // "no solid voxel on this line"
 // One axis of the box-gap transform, in place on `line` (squared gaps so far):
 //   out[i] = min over j of line[j] + max(0, |i − j| − 1)²,
 // the one-voxel dilation first (min of the three neighbours), then the lower envelope of
-// the parabolas line[j] + (i − j)² (Felzenszwalb & Huttenlocher 2012). A periodic line is
-// laid out three times so that the envelope sees the wrapped neighbours.
+// the parabolas line[j] + (i − j)² (Felzenszwalb & Huttenlocher 2012). Without `dilate`
+// it is the squared Euclidean transform of centres, min over j of line[j] + (i − j)². A
+// periodic line is laid out three times so that the envelope sees the wrapped neighbours.
 // In double: the squares of positions in a tripled line of 4096 pass float's 2²⁴.
-void gap_transform_1d(std::vector<float>& line, bool periodic, std::vector<double>& g, std::vector<int>& v,
-                      std::vector<double>& z) {
+void gap_transform_1d(std::vector<float>& line, bool periodic, bool dilate, std::vector<double>& g,
+                      std::vector<int>& v, std::vector<double>& z) {
   const int n = int(line.size());
   const int copies = periodic ? 3 : 1;
   const int m = n * copies;
@@ -67,6 +86,7 @@ void gap_transform_1d(std::vector<float>& line, bool periodic, std::vector<doubl
     for (int i = 0; i < n; ++i) {
       double best = line[size_t(i)];
       for (int o : {-1, 1}) {
+        if (!dilate) break;
         int k = i + o;
         if (periodic) k = (k + n) % n;
         if (k >= 0 && k < n) best = std::min(best, double(line[size_t(k)]));
@@ -108,8 +128,9 @@ void gap_transform_1d(std::vector<float>& line, bool periodic, std::vector<doubl
   }
 }
 
-// The box-gap transform along one axis of a grid of `dims` (x fastest), in place.
-void gap_transform_axis(std::vector<float>& grid, const int dims[3], int axis, bool periodic) {
+// The box-gap (or, without `dilate`, Euclidean) transform along one axis of a grid of
+// `dims` (x fastest), in place.
+void gap_transform_axis(std::vector<float>& grid, const int dims[3], int axis, bool periodic, bool dilate = true) {
   const size_t stride[3] = {1, size_t(dims[0]), size_t(dims[0]) * size_t(dims[1])};
   const int n = dims[axis];
   const int a = (axis + 1) % 3, b = (axis + 2) % 3;
@@ -120,7 +141,7 @@ void gap_transform_axis(std::vector<float>& grid, const int dims[3], int axis, b
     for (int ia = 0; ia < dims[a]; ++ia) {
       const size_t base = size_t(ia) * stride[a] + size_t(ib) * stride[b];
       for (int i = 0; i < n; ++i) line[size_t(i)] = grid[base + size_t(i) * stride[axis]];
-      gap_transform_1d(line, periodic, g, v, z);
+      gap_transform_1d(line, periodic, dilate, g, v, z);
       for (int i = 0; i < n; ++i) grid[base + size_t(i) * stride[axis]] = line[size_t(i)];
     }
 }
@@ -136,7 +157,7 @@ std::string fmt(double v) {
 
 }  // namespace
 
-VolumeMap distance_map(const HeightField& f, int slices) {
+VolumeMap box_gap_map(const HeightField& f, int slices) {
   VolumeMap m;
   m.width = f.width, m.height = f.height, m.slices = slices;
   const std::vector<float> top = cell_tops(f);
@@ -150,9 +171,34 @@ VolumeMap distance_map(const HeightField& f, int slices) {
   gap_transform_axis(m.values, dims, 1, true);
   gap_transform_axis(m.values, dims, 2, false);
   for (float& v : m.values) v = std::sqrt(v);
-  m.params = map_key("distance", f, slices);
+  m.params = map_key("box-gap", f, slices);
   m.params.insert({{"shadetlm:units", "voxels"},
                    {"shadetlm:safety", "box gap: no point of the voxel is nearer the cells' boxes [cell] x [0, D*max corner]"}});
+  return m;
+}
+
+VolumeMap donnelly_map(const HeightField& f, int slices) {
+  VolumeMap m;
+  m.width = f.width, m.height = f.height, m.slices = slices;
+  const size_t cells = size_t(f.width) * size_t(f.height);
+  m.values.assign(cells * size_t(slices), kFar);
+  for (int j = 0; j < f.height; ++j)
+    for (int i = 0; i < f.width; ++i) {
+      const double centre = double(slices) * bilinear_height<double>(f, i + 0.5, j + 0.5);
+      for (int k = 0; k < slices && k + 0.5 <= centre; ++k)
+        m.values[size_t(k) * cells + size_t(j) * size_t(f.width) + size_t(i)] = 0;
+    }
+  const int dims[3] = {f.width, f.height, slices};
+  for (int axis = 0; axis < 3; ++axis) gap_transform_axis(m.values, dims, axis, axis < 2, false);
+  // The floor is solid too: a solid slice at k = −1, k + 1 voxels below each centre.
+  for (int k = 0; k < slices; ++k)
+    for (size_t c = 0; c < cells; ++c) {
+      float& v = m.values[size_t(k) * cells + c];
+      v = std::sqrt(std::min(v, float((k + 1) * (k + 1))));
+    }
+  m.params = map_key("donnelly", f, slices);
+  m.params.insert({{"shadetlm:units", "voxels"},
+                   {"shadetlm:safety", "none: Euclidean distance between voxel centres, read trilinearly (Donnelly)"}});
   return m;
 }
 

@@ -2,8 +2,10 @@
 // Height fields and the maps the parallax tracers read (docs/parallax.md; the parallax
 // paper, ../shared/papers/parallax-distance-map.md):
 //
-//  * Donnelly's distance map: per voxel, a distance to the relief that is safe for every
-//    point of the voxel;
+//  * Donnelly's distance map as published: per voxel, the Euclidean distance from its
+//    centre to the nearest solid voxel's centre, read trilinearly;
+//  * the box-gap map: per voxel, a distance to the relief that is safe for every
+//    point of the voxel (the refined map's floor, read nearest);
 //  * the paper's refined map: per voxel, the smallest remaining distance to the first
 //    hit over the admissible view rays that cross the voxel unobstructed;
 //  * a safe cone map: per texel cell, an apex height and a cone ratio.
@@ -152,19 +154,31 @@ struct VolumeMap {
   }
   // The voxel that holds (x, y, z), z clamped into the volume.
   float sample(float x, float y, float z) const;
+  // The trilinear value at (x, y, z), voxel centres at (i + ½, j + ½, k + ½); wrapping
+  // in x and y, clamped to the centres of the first and last slice in z.
+  float trilinear(float x, float y, float z) const;
 };
 
 // The cell's conservative top: the largest of its four corners. The bilinear patch never
 // rises above it, so the boxes [cell] × [0, D·top] hold the relief.
 std::vector<float> cell_tops(const HeightField& f);
 
-// Donnelly's distance map, made safe for sampling: per voxel, the Euclidean gap between
-// the voxel's box and the nearest voxel that meets a cell's box (so 0 next to the
-// relief); no point of the voxel is nearer the relief than that. Computed by a separable
-// linear-time distance transform (Felzenszwalb–Huttenlocher lower envelopes, after a
-// one-voxel dilation per axis, which turns centre distances into box gaps), wrapping in
-// x and y. In voxels.
-VolumeMap distance_map(const HeightField& f, int slices);
+// The box-gap map, Donnelly's map made safe for nearest reads: per voxel, the Euclidean
+// gap between the voxel's box and the nearest voxel that meets a cell's box (so 0 next
+// to the relief); no point of the voxel is nearer the relief than that. Computed by a
+// separable linear-time distance transform (Felzenszwalb–Huttenlocher lower envelopes,
+// after a one-voxel dilation per axis, which turns centre distances into box gaps),
+// wrapping in x and y. In voxels.
+VolumeMap box_gap_map(const HeightField& f, int slices);
+
+// Donnelly's distance map as published (GPU Gems 2, ch. 8): a voxel is solid when its
+// centre is at or under the relief (z = k + ½ ≤ D·h at the cell's centre); every voxel
+// stores the Euclidean distance from its centre to the nearest solid voxel's centre (0
+// inside). Donnelly used Danielsson's sweeps, which approximate this distance; here it is
+// exact (the same separable transform, without the dilation). Not safe: a trilinear
+// read can exceed the distance to the relief, which the tracer's fixed step count and
+// the report measure. In voxels.
+VolumeMap donnelly_map(const HeightField& f, int slices);
 
 // The paper's refined map. For each sampled admissible direction (elevation ≥
 // min_elevation_deg in the tracer's space; `azimuths` × `elevations` directions up to
@@ -197,7 +211,7 @@ struct ConeMap {
 ConeMap cone_map(const HeightField& f, int slices, int levels);
 
 // What identifies a map, written into it by its builder as shadetlm:* parameters: its
-// kind ("distance", "refined", "cone"), slices, the height field's checksum, and the
+// kind ("box-gap", "donnelly", "refined", "cone"), slices, the height field's checksum, and the
 // builder's own parameters (refined: the elevation bound, directions, rays and margin;
 // cone: the levels). A map read back for a scene is checked against the scene's key,
 // and a map cache files maps under it.
@@ -213,10 +227,11 @@ std::string height_checksum(const HeightField& f);
 
 // ---- The io component (shadetlm::io, linked apart: file formats) from here on.
 // Maps as EXR: a volume's slices as channels "d.000" …, a cone map as "apex" and
-// "ratio", the parameters as shadetlm:* string attributes. Reading checks the kind and
+// "ratio", the parameters as shadetlm:* string attributes. Reading checks the kind (a
+// volume: box-gap, donnelly or refined; the caller checks which with check_map_key) and
 // the sizes and throws InputError naming the file and the field.
 void write_volume_map(const std::string& path, const VolumeMap& map, const std::string& kind);
-VolumeMap read_volume_map(const std::string& path, const std::string& kind);
+VolumeMap read_volume_map(const std::string& path);
 void write_cone_map(const std::string& path, const ConeMap& map);
 ConeMap read_cone_map(const std::string& path);
 

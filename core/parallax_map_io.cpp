@@ -1,4 +1,5 @@
 // Distance and cone maps in and out of EXR files (the io component).
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -26,12 +27,15 @@ int attribute_int(const Frame& f, const std::string& path, const std::string& na
   }
 }
 
-void check_kind(const Frame& f, const std::string& path, const std::string& kind) {
+// The map's kind, one of `kinds` (their names joined by " or " in the message).
+void check_kind(const Frame& f, const std::string& path, const std::vector<std::string>& kinds) {
   auto it = f.attributes.find("shadetlm:map");
   if (it == f.attributes.end())
     throw InputError(path, "shadetlm:map", "missing: not a map written by shadetlm precompute");
-  if (it->second != kind && !(kind == "distance" && it->second == "refined"))
-    throw InputError(path, "shadetlm:map", "is \"" + it->second + "\", expected \"" + kind + "\"");
+  if (std::find(kinds.begin(), kinds.end(), it->second) != kinds.end()) return;
+  std::string expected;
+  for (const std::string& k : kinds) expected += (expected.empty() ? "\"" : " or \"") + k + "\"";
+  throw InputError(path, "shadetlm:map", "is \"" + it->second + "\", expected " + expected);
 }
 
 }  // namespace
@@ -49,9 +53,9 @@ void write_volume_map(const std::string& path, const VolumeMap& map, const std::
   write_exr(path, f);
 }
 
-VolumeMap read_volume_map(const std::string& path, const std::string& kind) {
+VolumeMap read_volume_map(const std::string& path) {
   const Frame f = read_exr(path);
-  check_kind(f, path, kind);
+  check_kind(f, path, {"box-gap", "refined", "donnelly"});
   VolumeMap m;
   m.width = f.width, m.height = f.height;
   m.slices = attribute_int(f, path, "shadetlm:slices");
@@ -81,7 +85,7 @@ void write_cone_map(const std::string& path, const ConeMap& map) {
 
 ConeMap read_cone_map(const std::string& path) {
   const Frame f = read_exr(path);
-  check_kind(f, path, "cone");
+  check_kind(f, path, {"cone"});
   ConeMap m;
   m.width = f.width, m.height = f.height;
   m.slices = attribute_int(f, path, "shadetlm:slices");

@@ -373,8 +373,13 @@ void read_parallax(JsonReader pr, ParallaxSettings& ps) {
   for (ParallaxMethod pm : {ParallaxMethod::Offset, ParallaxMethod::Steep, ParallaxMethod::Pom,
                             ParallaxMethod::Relief, ParallaxMethod::Distance, ParallaxMethod::Cone})
     if (method == to_string(pm)) ps.method = pm;
-  ps.refined = pr.choice("map", std::string("refined"), {"refined", "donnelly"}) == "refined";
+  const std::string map = pr.choice("map", std::string(to_string(ps.map)), {"refined", "box-gap", "donnelly"});
+  for (DistanceMap dm : {DistanceMap::Refined, DistanceMap::BoxGap, DistanceMap::Donnelly})
+    if (map == to_string(dm)) ps.map = dm;
   if (pr.has("map") && ps.method != ParallaxMethod::Distance) pr.fail("map", "only the distance method reads it");
+  ps.steps = pr.integer("steps", ps.steps, 1, 4096);
+  if (pr.has("steps") && !(ps.method == ParallaxMethod::Distance && ps.map == DistanceMap::Donnelly))
+    pr.fail("steps", "only the distance method on Donnelly's map reads it");
   // Any depth is accepted: 0 or below is documented as flat (uv unchanged).
   ps.depth = pr.number("depth", ps.depth, -1e6, 1e6);
   ps.slices = pr.integer("slices", ps.slices, 1, 256);

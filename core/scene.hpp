@@ -67,9 +67,15 @@ inline bool bump_path(ShadingPath p) {
 // The parallax block's method and its settings (material "parallax": docs/scene-format.md).
 enum class ParallaxMethod { Offset, Steep, Pom, Relief, Distance, Cone };
 const char* to_string(ParallaxMethod m);
+// The distance method's map (docs/parallax.md): the paper's refined map, the box-gap
+// map it refines (safe for nearest reads, with the exact cell finish), or Donnelly's
+// Euclidean map traced as published (a fixed count of trilinear sphere steps).
+enum class DistanceMap { Refined, BoxGap, Donnelly };
+const char* to_string(DistanceMap m);
 struct ParallaxSettings {
   ParallaxMethod method = ParallaxMethod::Distance;
-  bool refined = true;       // distance: the paper's refined map (else Donnelly's)
+  DistanceMap map = DistanceMap::Refined;  // distance
+  int steps = 16;            // distance on Donnelly's map: the fixed count of sphere steps
   double depth = 0.05;       // the relief's depth in uv units (≤ 0: flat, uv unchanged)
   int slices = 16;           // D: the distance and cone maps' depth in voxels
   int max_iterations = 256;  // the tracer's cap (then it stops where it is)

@@ -44,6 +44,15 @@ const char* to_string(ParallaxMethod m) {
   return "?";
 }
 
+const char* to_string(DistanceMap m) {
+  switch (m) {
+    case DistanceMap::Refined: return "refined";
+    case DistanceMap::BoxGap: return "box-gap";
+    case DistanceMap::Donnelly: return "donnelly";
+  }
+  return "?";
+}
+
 // ---------------------------------------------------------------- camera
 
 glm::dvec3 Camera::forward() const { return glm::normalize(target - position); }

@@ -65,7 +65,7 @@ def label(r):
     if r["family"] == "texture":  # texture-object has no filter axis
         return SHORT.get(c.get("filter", c["path"]), c.get("filter", c["path"]))
     if r["family"] == "parallax":
-        tracer = "donnelly" if "map" in c else c.get("method", "refined")
+        tracer = c["map"] if "map" in c else c.get("method", "refined")
         return tracer if tracer == "offset" else "%s %s" % (tracer, c["max_iterations"])
     return ",".join(v for k, v in c.items() if k != "number_format")
 

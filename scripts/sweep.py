@@ -115,9 +115,10 @@ def plan():
                 if filt:
                     sets["pipeline.texture_fetch.filter"] = filt
                 runs.append(("texture", scene, sets))
-    # The parallax tracers: the refined distance map (the default), Donnelly's map, cone
-    # stepping, and the layered searches, each at three iteration caps.
-    tracers = [{}, {"parallax.method": "distance", "parallax.map": "donnelly"}] + [
+    # The parallax tracers: the refined distance map (the default), the box-gap map,
+    # Donnelly's map as published, cone stepping, and the layered searches, each at three
+    # iteration caps.
+    tracers = [{}] + [{"parallax.method": "distance", "parallax.map": m} for m in ["box-gap", "donnelly"]] + [
         {"parallax.method": m} for m in ["cone", "relief", "pom", "steep", "offset"]]
     for tracer in tracers:
         for cap in [256] if tracer.get("parallax.method") == "offset" else [16, 64, 256]:  # offset: no loop

@@ -131,7 +131,7 @@ for path in bump-classic bump-tangent bump-square bump-object; do
 done
 
 # Parallax maps: written with their parameters in the header; bad input exits 2, no file.
-for kind in distancemap refinedmap conemap; do
+for kind in boxgapmap distancemap donnellymap refinedmap conemap; do  # distancemap: boxgapmap's old name
   check "precompute-$kind" 0 "$bin" precompute $kind "$tmp/h64.png" -o "$tmp/px/$kind.exr" --slices 8
   expect_output "precompute-$kind" "8 slices"
   check "precompute-$kind-missing" 2 "$bin" precompute $kind "$tmp/none.png" -o "$tmp/px/none-$kind.exr"
@@ -171,6 +171,11 @@ expect_output px-map-file-other-height "shadetlm:height_checksum"
 check px-map-file-donnelly 2 "$bin" render "${px[@]}" -o "$tmp/px/bad.exr" \
   --set "materials.carved.parallax.map_file=$tmp/px/refined.exr" --set materials.carved.parallax.map=donnelly
 expect_output px-map-file-donnelly "shadetlm:map"
+check px-donnelly-map-file 0 "$bin" render "${px[@]}" -o "$tmp/px/donnelly.exr" \
+  --set "materials.carved.parallax.map_file=$tmp/px/donnellymap.exr" --set materials.carved.parallax.map=donnelly \
+  --set textures.relief.file="$tmp/h64.png" --set materials.carved.parallax.slices=8
+check px-steps-not-donnelly 2 "$bin" render "${px[@]}" -o "$tmp/px/bad.exr" --set materials.carved.parallax.steps=8
+expect_output px-steps-not-donnelly "steps"
 expect_no_file px-map-file-refused "$tmp/px/bad.exr"
 check px-map-file-missing 2 "$bin" render "${px[@]}" -o "$tmp/px/bad.exr" --set "materials.carved.parallax.map_file=$tmp/none.exr"
 expect_output px-map-file-missing "none.exr"

@@ -9,7 +9,7 @@ namespace shadetlm::modules {
 
 core::MapKey parallax_map_key(const core::HeightField& f, const core::ParallaxSettings& s) {
   if (s.method == core::ParallaxMethod::Cone) return core::map_key("cone", f, s.slices, nullptr, 4 * s.slices);
-  if (!s.refined) return core::map_key("distance", f, s.slices);
+  if (s.map != core::DistanceMap::Refined) return core::map_key(core::to_string(s.map), f, s.slices);
   core::RefinedParams p;
   p.min_elevation_deg = s.min_elevation_deg;
   p.margin = s.margin;
@@ -26,16 +26,18 @@ ParallaxMaps build_parallax_maps(const core::Texture& height_map, const core::Pa
   if (!s.map_file.empty() && (distance || cone)) {  // precomputed: read, and checked against the scene
     const core::MapKey key = parallax_map_key(m.field, s);
     if (distance) {
-      m.volume = core::read_volume_map(s.map_file, "distance");
+      m.volume = core::read_volume_map(s.map_file);
       core::check_map_key(m.volume.params, key, m.volume.width, m.volume.height, m.field, s.map_file);
     } else {
       m.cone = core::read_cone_map(s.map_file);
       core::check_map_key(m.cone.params, key, m.cone.width, m.cone.height, m.field, s.map_file);
     }
     m.loaded = true;
+  } else if (distance && s.map == core::DistanceMap::Donnelly) {
+    m.volume = core::donnelly_map(m.field, s.slices);
   } else if (distance) {
-    m.volume = core::distance_map(m.field, s.slices);
-    if (s.refined) {
+    m.volume = core::box_gap_map(m.field, s.slices);
+    if (s.map == core::DistanceMap::Refined) {
       core::RefinedParams p;
       p.min_elevation_deg = s.min_elevation_deg;
       p.margin = s.margin;
@@ -55,6 +57,8 @@ constexpr Ops kOpsRay{/*add*/ 9, /*mul*/ 16, 0, 0, /*rsqrt*/ 1};  // tangent-spa
 constexpr Ops kOpsHeightRead{/*add*/ 8, /*mul*/ 4, 0, 0, 0, 0, /*fetch*/ 4};  // bilinear height, ×D
 constexpr Ops kOpsLayer{/*add*/ 11, /*mul*/ 4, 0, 0, 0, 0, /*fetch*/ 4};                     // one layer down
 constexpr Ops kOpsSphere{/*add*/ 3, /*mul*/ 3, 0, 0, 0, 0, /*fetch*/ 1};        // p += d(p)·v̂
+// Donnelly's step: a trilinear read (3 fractions, 7 lerps of 1 mul and 2 add, 8 voxels), then p += d·v̂.
+constexpr Ops kOpsTrilinearSphere{/*add*/ 3 + 14 + 3, /*mul*/ 7 + 3, 0, 0, 0, 0, /*fetch*/ 8};
 constexpr Ops kOpsCone{/*add*/ 5, /*mul*/ 3, /*div*/ 2, 0, 0, 0, /*fetch*/ 1};  // step to the cone's side
 constexpr Ops kOpsCell{/*add*/ 16, /*mul*/ 18, /*div*/ 2, /*sqrt*/ 1, 0, 0, /*fetch*/ 4};  // exact cell test
 constexpr Ops kOpsOut{/*add*/ 4, /*mul*/ 2};  // texels back to uv
@@ -230,6 +234,35 @@ bool trace_spheres(const core::ParallaxSettings& s, const ParallaxMaps& m, const
   return true;
 }
 
+// Donnelly's tracing as published: a fixed count of sphere steps p ← p + d(p)·v̂, d read
+// trilinearly from the Euclidean map, no finish; the point after the last step is the
+// hit. With early exit the loop stops once a step would move under kDonnellyConverged
+// voxel (it has converged); without, every pixel pays s.steps.
+constexpr float kDonnellyConverged = 1.0f / 64;
+template <class T>
+bool trace_donnelly(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& x, T& y, T& z,
+                    ParallaxTrace& r, Ops* ops) {
+  const int steps = std::min(s.steps, s.max_iterations);
+  const T converged = T(kDonnellyConverged);
+  while (r.iterations < steps) {
+    if (!finite(x) || !finite(y) || !finite(z)) return false;
+    if (ray.reads) ray.reads->trilinear(float(x), float(y), float(z), m.volume);
+    const T d = T(m.volume.trilinear(float(x), float(y), float(z)));
+    ++r.iterations, ++r.trilinear, r.fetches += 8;
+    if (ops) *ops += kOpsTrilinearSphere;
+    if (s.early_exit && d < converged) break;
+    x += d * ray.dx, y += d * ray.dy, z += d * ray.dz;
+    ++r.skips;
+    if (z < T(0.0f)) {  // through the floor (the map clamps there): back onto it, the hit
+      const T back = z / ray.dz;
+      x -= back * ray.dx, y -= back * ray.dy, z = T(0.0f);
+      if (ops) *ops += Ops{/*add*/ 2, /*mul*/ 2, /*div*/ 1};
+      break;
+    }
+  }
+  return true;
+}
+
 // Cone stepping: from p over cell (i, j), the ray stays in the cone of the cell — free
 // of relief — until it has come down to apex + (distance from the footprint)/ratio; then
 // the exact cells. False if the ray overflowed.
@@ -274,11 +307,13 @@ ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, f
   }
   T x = ray.x0, y = ray.y0, z = ray.D;
   const bool distance = s.method == core::ParallaxMethod::Distance, cone = s.method == core::ParallaxMethod::Cone;
-  const bool traced = distance ? trace_spheres(s, m, ray, x, y, z, r, ops)
+  const bool donnelly = distance && s.map == core::DistanceMap::Donnelly;
+  const bool traced = donnelly ? trace_donnelly(s, m, ray, x, y, z, r, ops)
+                      : distance ? trace_spheres(s, m, ray, x, y, z, r, ops)
                       : cone   ? trace_cones(s, m, ray, x, y, z, r, ops)
                                : trace_layers(s, m, ray, x, y, z, r, ops);
   if (!traced) return r;  // overflowed (float16): counted; the entry kept
-  if (!s.early_exit && (distance || cone)) {
+  if (!s.early_exit && (distance || cone) && !donnelly) {
     // A fixed-length loop: the iterations after the hit still read the map (and find
     // the point where it is).
     const int idle = s.max_iterations - std::min(s.max_iterations, r.iterations);
@@ -335,6 +370,18 @@ void MapReads::voxel(float x, float y, float z, const core::VolumeMap& v) {
     return;
   const int k = std::clamp(int(std::floor(std::clamp(z, -1.0f, float(v.slices)))), 0, v.slices - 1);
   texel(place_->slices[size_t(k)], int(std::floor(x)), int(std::floor(y)));
+}
+
+void MapReads::trilinear(float x, float y, float z, const core::VolumeMap& v) {
+  if (place_->slices.empty() || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) ||
+      std::abs(x) > 1e9f || std::abs(y) > 1e9f)
+    return;
+  const int i = int(std::floor(x - 0.5f)), j = int(std::floor(y - 0.5f));
+  const int k = int(std::floor(std::clamp(z - 0.5f, 0.0f, float(v.slices - 1))));
+  for (int kk : {k, std::min(k + 1, v.slices - 1)}) {
+    const Surface& slice = place_->slices[size_t(kk)];
+    texel(slice, i, j), texel(slice, i + 1, j), texel(slice, i, j + 1), texel(slice, i + 1, j + 1);
+  }
 }
 
 void MapReads::cone(int i, int j) {
@@ -408,9 +455,7 @@ void ParallaxKernel::process(SpanPacket& p) {
     p.uvp[1][i] = moved ? v - (r.y - y0) / H : v;
     p.iterations[i] = float(r.iterations);
     iterations += uint64_t(r.iterations);
-    // A cell test takes cell_cycles_, any other iteration one; a pixel at least one.
-    const int64_t cycles = int64_t(r.iterations - r.cells) + int64_t(r.cells) * cell_cycles_;
-    work_[i] = uint16_t(std::clamp<int64_t>(cycles, 1, 65535));
+    work_[i] = uint16_t(std::min<int64_t>(parallax_cycles(r, cell_cycles_), 65535));
   }
   ops_ += Ops{/*add*/ 5, /*mul*/ 5} * uint64_t(p.count);  // uv and the tangent-space eye vector, per pixel
   if (p.count > 0) ops_ += Ops{/*add*/ 10, /*mul*/ 10};   // five plane seeds

@@ -8,11 +8,12 @@
 //             layer under the relief
 //   pom       steep, then the linear intersection of the last two layers
 //   relief    steep, then a binary search between the last two layers
-//   distance  sphere tracing on a distance map: Donnelly's, or the paper's refined map
-//             (parallax.map) — the same tracer, only the map differs
+//   distance  sphere tracing on a distance map (parallax.map): the paper's refined map or
+//             the box-gap map it refines — the same tracer, only the map differs — or
+//             Donnelly's Euclidean map traced as published (s.steps trilinear steps)
 //   cone      cone stepping on a safe cone map
 //
-// distance and cone skip empty space, then walk the last cells with the exact per-cell
+// distance (refined, box-gap) and cone skip empty space, then walk the last cells with the exact per-cell
 // test (core::march_cells) — the same finish for both, so that their iteration counts
 // differ only by the skipping. Iterations: one per map or height read of the loop (a
 // cell test counts one, with four texel fetches). Without early exit (parallax.early_exit
@@ -21,6 +22,7 @@
 // Under the DRAM model (docs/memory.md) its map reads go through its cache: the height
 // field (4 bytes a texel), the distance map (4 bytes a voxel, slice after slice) or the
 // cone map (8 bytes a cell: apex and ratio), each line once a pixel.
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,12 +33,16 @@
 #include "shadetlm/modules/common/packet.hpp"
 #include "shadetlm/modules/memory/cache.hpp"
 
+namespace shadetlm::core {
+class Settings;
+}
+
 namespace shadetlm::modules {
 
 // The maps one material's tracer reads, built from its height map.
 struct ParallaxMaps {
   core::HeightField field;
-  core::VolumeMap volume;  // distance: Donnelly's or refined
+  core::VolumeMap volume;  // distance: refined, box-gap or Donnelly's
   core::ConeMap cone;      // cone
   int slices = 16;
   double precompute_s = 0;  // building the maps, or reading them
@@ -55,7 +61,18 @@ struct ParallaxTrace {
   int fetches = 0;     // texels read
   int skips = 0;       // distance, cone: the iterations that skipped empty space (the rest tested cells)
   int cells = 0;       // of the iterations, the exact per-cell tests (distance, cone: the finish)
+  int trilinear = 0;   // of the iterations, trilinear map reads (Donnelly's steps)
 };
+// The tracer's cycles for a trace: an iteration a cycle (a texture unit filters four
+// texels a cycle: a bilinear height or one voxel), a trilinear read two, an exact cell
+// test `cell_cycles`; at least one a pixel.
+inline int64_t parallax_cycles(const ParallaxTrace& r, int64_t cell_cycles) {
+  const int64_t plain = int64_t(r.iterations) - r.cells - r.trilinear;
+  return std::max<int64_t>(1, plain + 2 * int64_t(r.trilinear) + int64_t(r.cells) * cell_cycles);
+}
+// The cycles of an exact cell test under the pipeline's settings: 18 mul, 2 div, a square
+// root and four texels on one divider and one square-root unit (the divider twice).
+int64_t parallax_cell_cycles(const core::Settings& settings);
 // The tracer's map reads under the DRAM model: where one material's maps lie, and the
 // lines a pixel touches (its line buffer), read through the cache at the pixel's end.
 class MapReads {
@@ -71,6 +88,7 @@ class MapReads {
   void bilinear(float x, float y);    // the four texels of core::bilinear_height
   void cell(int i, int j);            // the four corners of core::cell_hit's cell
   void voxel(float x, float y, float z, const core::VolumeMap& v);  // as VolumeMap::sample
+  void trilinear(float x, float y, float z, const core::VolumeMap& v);  // as VolumeMap::trilinear
   void cone(int i, int j);            // a cone map cell (i, j within the map)
   uint16_t end();                     // the DRAM lines the pixel moved
 
@@ -106,7 +124,7 @@ class ParallaxKernel {
 
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
-  // An iteration a cycle, a cell test cell_cycles; the DRAM lines of each pixel's map reads.
+  // parallax_cycles a pixel; the DRAM lines of each pixel's map reads.
   Work work(const SpanPacket&) const { return {work_, 0, memory_ ? lines_ : nullptr}; }
   const MemoryClient* memory() const { return memory_.get(); }
   bool bypass(const SpanPacket& p) const { return p.tri->material->path != core::ShadingPath::Parallax; }
