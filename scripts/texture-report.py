@@ -18,6 +18,7 @@ IMAGES = sys.argv[sys.argv.index("--images") + 1] if "--images" in sys.argv else
 TMP = tempfile.mkdtemp(prefix="texture-report-")
 ARITH = ["add", "mul", "div", "sqrt", "rsqrt", "lut"]
 CONFIGS = [("object space (texel_project)", "texture-object", None, 4),
+           ("object space, constant z′", "texture-object", "constant-z", 4),
            ("nearest", "texture-screen", "nearest", 4), ("bilinear", "texture-screen", "bilinear", 4),
            ("trilinear", "texture-screen", "trilinear", 4), ("anisotropic 4", "texture-screen", "anisotropic", 4),
            ("anisotropic 16", "texture-screen", "anisotropic", 16), ("EWA", "texture-screen", "ewa", 4)]
@@ -58,7 +59,9 @@ def render(doc, path, filt, probes, units=4, preview=None):
     doc = json.loads(json.dumps(doc))
     doc["materials"]["m"]["path"] = path
     doc["pipeline"] = {"texel_project": {"units": units}}
-    if filt:
+    if path == "texture-object" and filt:  # texel_project's LOD rule
+        doc["pipeline"]["texel_project"]["lod"] = filt
+    elif filt:
         doc["pipeline"]["texture_fetch"] = {"filter": filt, "probes": probes}
     name = os.path.join(TMP, "s%d" % runs)
     with open(name + ".json", "w") as f:
@@ -152,6 +155,55 @@ for units in [1, 2, 4, 8, 16, 32]:
         units, d["texels"], d["busiest_unit_texels"], d["busiest_unit_texels_round_robin"],
         d["texels"] / units / max(1, d["busiest_unit_texels"]), 100.0 * d["cross_unit_splats"] / max(1, d["splats"]),
         d["cycles"], base / d["cycles"]))
+
+# Where object-space texturing stops beating 16-probe anisotropic filtering: a sweep over
+# the plane's angle from the view direction, every 5°, with both LOD rules.
+SWEEP = list(range(0, 90, 5))
+RIVALS = [c for c in CONFIGS if c[0].startswith("object space")] + [c for c in CONFIGS if c[0] == "anisotropic 16"]
+sweep = {}
+for texture in TEXTURES:
+    for view in SWEEP:
+        doc = scene(texture, view)
+        if view == 0:
+            doc["camera"]["up"] = [0, 1, 0]
+        for label, path, filt, probes in RIVALS:
+            sweep[(texture, view, label)] = figures(render(doc, path, filt, probes), path)
+print("\n## Object space against 16-probe anisotropic filtering, angle by angle (claim 3)\n")
+print("The plane at every 5° from the view direction; PSNR against the golden model (dB), and the texturing block's "
+      "arithmetic and texel fetches per shaded pixel, for object space with each LOD rule and for anisotropic 16.\n")
+for texture in TEXTURES:
+    print("### %s, by angle\n" % texture)
+    print("| angle | PSNR: object, object z′, aniso 16 | arithmetic / px: object, object z′, aniso 16 | "
+          "fetches / px: object, object z′, aniso 16 |")
+    print("|---|---|---|---|")
+    for view in SWEEP:
+        r = [sweep[(texture, view, c[0])] for c in RIVALS]
+        print("| %d° | %s | %s | %s |" % (view, " / ".join("%.1f" % x["psnr"] for x in r),
+                                          " / ".join("%.0f" % x["arith"] for x in r),
+                                          " / ".join("%.1f" % x["fetch"] for x in r)))
+    print()
+
+
+def crossover(texture, label, worse):
+    """The first angle of the sweep at which anisotropic 16 beats object space (`worse`)."""
+    for view in SWEEP:
+        if worse(sweep[(texture, view, label)], sweep[(texture, view, "anisotropic 16")]):
+            return "%d°" % view
+    return "none up to %d°" % SWEEP[-1]
+
+
+print("### Crossover angles\n")
+print("The first angle of the sweep at which 16-probe anisotropic filtering beats object-space texturing: a higher "
+      "PSNR, fewer arithmetic operations, fewer texel fetches per pixel.\n")
+print("| texture | LOD rule | error | arithmetic | fetches |")
+print("|---|---|---|---|---|")
+for texture in TEXTURES:
+    for label, _, _, _ in RIVALS[:2]:
+        print("| %s | %s | %s | %s | %s |" % (
+            texture, "constant z′ (the paper's)" if "z′" in label else "most magnified vertex",
+            crossover(texture, label, lambda o, a: a["psnr"] > o["psnr"]),
+            crossover(texture, label, lambda o, a: a["arith"] < o["arith"]),
+            crossover(texture, label, lambda o, a: a["fetch"] < o["fetch"])))
 
 print("\n%d renders; `scripts/texture-report.sh%s`." % (runs, " --images " + IMAGES if IMAGES else ""))
 shutil.rmtree(TMP, ignore_errors=True)

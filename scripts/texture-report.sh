@@ -17,4 +17,4 @@ for arg in "$@"; do
 done
 photo=$("$root/scripts/skimage-asset.sh" astronaut.png)
 report=(python3 "$root/scripts/texture-report.py" "$root/build/app/shadetlm" "$photo" ${args[@]+"${args[@]}"})
-if ((doc)); then python3 "$root/scripts/doc-tables.py" --run "$root/docs/object-space-texturing.md" texture 5 -- "${report[@]}"; else "${report[@]}"; fi
+if ((doc)); then python3 "$root/scripts/doc-tables.py" --run "$root/docs/object-space-texturing.md" texture 9 -- "${report[@]}"; else "${report[@]}"; fi

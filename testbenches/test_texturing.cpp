@@ -4,6 +4,7 @@
 // hostile geometry.
 #include <cmath>
 #include <cstring>
+#include <sstream>
 
 #include "shadetlm/core/compare.hpp"
 #include "shadetlm/modules/pipeline/pipeline.hpp"
@@ -72,6 +73,38 @@ TEST_CASE("texel_project: no holes, weights that sum to 1, one LOD per polygon",
     CHECK(d["lod_computations"].get<uint64_t>() == d["polygons"].get<uint64_t>());
     CHECK(d["polygons"].get<uint64_t>() <= 32);  // 4 × 4 quads
     CHECK(test::no_nan(r.frame));
+  }
+  // The paper's LOD rule (constant z′): also one per polygon, no holes; facing the camera
+  // it picks what the most magnified vertex does (within the plane's perspective), and
+  // at grazing views a finer level — z′, the plane's distance, is below every vertex's
+  // depth — so at least as many texels. It is measured from the eye: moving the scene and
+  // the camera together changes nothing.
+  struct Lod {
+    uint64_t texels, magnified;
+  };
+  auto texels = [](double elevation, const std::string& rule, const std::vector<std::string>& more = {}) {
+    std::vector<std::string> sets = {"pipeline.texel_project.lod=" + rule};
+    sets.insert(sets.end(), more.begin(), more.end());
+    const modules::RenderResult r =
+        modules::render_loop(core::load_scene_text(plane_scene("texture-object", elevation), "p", ".", sets));
+    const nlohmann::json& d = details(r, "texel_project");
+    CHECK(d["holes"].get<uint64_t>() == 0);
+    CHECK(d["lod_rule"] == rule);
+    CHECK(d["lod_computations"].get<uint64_t>() == d["polygons"].get<uint64_t>());
+    return Lod{d["texels"].get<uint64_t>(), d["magnified_polygons"].get<uint64_t>()};
+  };
+  for (double elevation : {80.0, 45.0, 15.0, 5.0}) {
+    INFO("elevation " << elevation);
+    const Lod z = texels(elevation, "constant-z"), vertex = texels(elevation, "most-magnified");
+    CHECK(z.texels >= vertex.texels);
+    if (elevation == 80.0) CHECK(double(z.texels) <= 4.0 * double(vertex.texels));  // at most one level finer
+    const double e = elevation * M_PI / 180;
+    std::ostringstream eye;
+    eye << "camera.position=[100," << -40 + 2.4 * std::sin(e) << "," << 7 + 2.4 * std::cos(e) << "]";
+    const Lod moved = texels(elevation, "constant-z", {"objects.0.transform.translate=[100,-40,7]", eye.str(),
+                                                       "camera.target=[100,-40,7]"});
+    CHECK(moved.magnified == z.magnified);
+    CHECK(double(moved.texels) == Approx(double(z.texels)).epsilon(0.02));  // float visibility at the edges
   }
   // The screen-space filters compute a LOD per pixel.
   const modules::RenderResult s = modules::render_loop(core::load_scene_text(plane_scene("texture-screen", 30), "s", "."));

@@ -28,7 +28,9 @@ class TexelProjectBlock : public KernelBlock<TexelProjectKernel, TexelProject> {
 BlockDecl texel_project_block() {
   BlockDecl d{"texel_project", {16, 1}, true,
               {{"units", 4, {}, 1, 64, "parallel splat units of texel_project"},
-               {"accumulator_bits", 32, {}, 8, 64, "bits of each of a pixel's four accumulated numbers (DRAM model)"}},
+               {"accumulator_bits", 32, {}, 8, 64, "bits of each of a pixel's four accumulated numbers (DRAM model)"},
+               {"lod", "most-magnified", {"most-magnified", "constant-z"}, 0, 0,
+                "LOD rule: the spacing at the visible polygon's most magnified vertex, or the paper's constant z'"}},
               TexelProjectKernel::needed, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
                 std::optional<TexelProjectKernel::Memory> memory;
                 if (const auto cache = cache_of(ctx)) {
@@ -38,7 +40,9 @@ BlockDecl texel_project_block() {
                       DramTiming{uint64_t(s.integer("memory.latency")), uint64_t(s.integer("memory.bytes_per_cycle"))},
                       ctx.integer("accumulator_bits")};
                 }
-                return std::make_unique<TexelProjectBlock>(ctx.scene, ctx.integer("units"), ctx.format(), memory);
+                const auto lod = ctx.string("lod") == "constant-z" ? TexelProjectKernel::Lod::ConstantZ
+                                                                   : TexelProjectKernel::Lod::MostMagnified;
+                return std::make_unique<TexelProjectBlock>(ctx.scene, ctx.integer("units"), ctx.format(), memory, lod);
               }};
   d.fifo = BlockDecl::Fifo::None;  // a pass of its own over the frame
   d.memory = true;                 // texel reads and splats through caches (docs/memory.md)

@@ -33,9 +33,10 @@ bool TexelProjectKernel::needed(const core::Scene& scene) {
 }
 
 TexelProjectKernel::TexelProjectKernel(const core::Scene& scene, int units, core::NumberFormat format,
-                                       std::optional<Memory> memory)
+                                       std::optional<Memory> memory, Lod lod)
     : scene_(scene),
       units_(std::max(1, units)),
+      lod_(lod),
       view_projection_(scene.camera.projection() * scene.camera.view()),
       unit_texels_(size_t(std::max(1, units)), 0),
       unit_round_robin_(size_t(std::max(1, units)), 0),
@@ -136,6 +137,7 @@ struct TexelProjectKernel::Splat {
   long i0 = 0, i1 = 0, j0 = 0, j1 = 0;  // the samples' box
   double margin = 0, altitude[3] = {}, slope[3] = {};
   glm::dvec2 along_u, along_v;      // uv → (x', y') − A
+  double z_eye = 0;                 // z' of the rotated plane relative to the eye's: its distance
   glm::dvec4 A_x, A_y, a0;          // M*: clip = A_x·(x' − x'_A) + A_y·(y' − y'_A) + clip(A)
   long tile_row0 = 0;
   std::vector<std::pair<long, long>> tile_span;  // per row of tiles: the tiles read
@@ -221,6 +223,10 @@ void TexelProjectKernel::rotate_into_plane(const glm::dvec3 P[3], const glm::dve
   glm::dvec3 q[3];
   for (int k = 0; k < 3; ++k) q[k] = R.apply(P[k], n);
   ops_ += Ops{/*add*/ 2 + 9 + 2, /*mul*/ 6 + 2 + 3 * 6 + 2, /*div*/ 3, /*sqrt*/ 2};
+  if (lod_ == Lod::ConstantZ) {  // (7) applied to the eye: z' − z'_eye, one product saved as for the vertices
+    s.z_eye = std::abs(q[0].z - R.apply(scene_.camera.position, n).z);
+    ops_ += Ops{/*add*/ 3, /*mul*/ 3};
+  }
   // uv → (x', y') − A: affine over the rotated triangle.
   const glm::dvec2 e1(q[1] - q[0]), e2(q[2] - q[0]);
   s.along_u = (e1 * s.t2.y - e2 * s.t1.y) / s.det, s.along_v = (e2 * s.t1.x - e1 * s.t2.x) / s.det;
@@ -232,18 +238,13 @@ void TexelProjectKernel::rotate_into_plane(const glm::dvec3 P[3], const glm::dve
   c_u = s.A_x * s.along_u.x + s.A_y * s.along_u.y, c_v = s.A_x * s.along_v.x + s.A_y * s.along_v.y;
 }
 
-// The LOD, once: pixels per texel step of level 0 at the most magnified point of the
-// visible triangle (taken at the vertices of its clipped polygon, where 1/w is largest);
-// the level that makes the spacing at most one pixel. Magnified beyond level 0: m
-// samples per texel and axis, read bilinearly. Also the visible part's uv box.
-void TexelProjectKernel::choose_level(const core::ClipPolygon& visible_part,
-                                      const std::vector<const core::Texture*>& levels, const glm::dvec4& c_u,
-                                      const glm::dvec4& c_v, Splat& s, glm::dvec2& uv_lo, glm::dvec2& uv_hi) {
+// Pixels per texel step of level 0 at the most magnified point of the visible triangle
+// (taken at the vertices of its clipped polygon, where 1/w is largest).
+double TexelProjectKernel::most_magnified(const core::ClipPolygon& visible_part, const glm::dvec4& c_u,
+                                          const glm::dvec4& c_v, const Splat& s) {
   const int width = scene_.camera.width, height = scene_.camera.height;
-  ++lod_computations_;
   const double W0 = s.texture->width, H0 = s.texture->height;
   double pixels_per_texel = 0;
-  uv_lo = glm::dvec2(1e300), uv_hi = glm::dvec2(-1e300);
   for (const auto& vertex : visible_part) {
     const glm::dvec4 c = vertex.clip;
     auto step = [&](const glm::dvec4& d, double texels) {
@@ -252,10 +253,39 @@ void TexelProjectKernel::choose_level(const core::ClipPolygon& visible_part,
       return std::sqrt(sx * sx + sy * sy) / texels;
     };
     pixels_per_texel = std::max({pixels_per_texel, step(c_u, W0), step(c_v, H0)});
+  }
+  ops_ += Ops{/*add*/ 12, /*mul*/ 24, /*div*/ 4, /*sqrt*/ 2, 0, /*lut*/ 1} * uint64_t(visible_part.size());
+  return pixels_per_texel;
+}
+
+// The paper's rule: the rotated polygon lies parallel to the image plane at distance z'
+// from the eye, so a texel step of level 0 (its length in the plane: |along_u| / W0, the
+// rotation keeps lengths) spans f / z' pixels per unit, f = ½·height·P[1][1] the focal
+// length in pixels. One scale for the whole polygon.
+double TexelProjectKernel::constant_z(const Splat& s) {
+  const double focal = 0.5 * scene_.camera.height * double(scene_.camera.projection()[1][1]);
+  const double texel = std::max(glm::length(s.along_u) / s.texture->width, glm::length(s.along_v) / s.texture->height);
+  ops_ += Ops{/*add*/ 2, /*mul*/ 7, /*div*/ 3, /*sqrt*/ 2, 0, /*lut*/ 1};
+  return focal * texel / s.z_eye;
+}
+
+// The LOD, once per polygon (pipeline.texel_project.lod): pixels per texel step of level
+// 0, and the level that makes the spacing at most one pixel. Magnified beyond level 0: m
+// samples per texel and axis, read bilinearly. Also the visible part's uv box.
+void TexelProjectKernel::choose_level(const core::ClipPolygon& visible_part,
+                                      const std::vector<const core::Texture*>& levels, const glm::dvec4& c_u,
+                                      const glm::dvec4& c_v, Splat& s, glm::dvec2& uv_lo, glm::dvec2& uv_hi) {
+  const int width = scene_.camera.width, height = scene_.camera.height;
+  ++lod_computations_;
+  const double W0 = s.texture->width, H0 = s.texture->height;
+  // A plane through the eye has no z' to scale by: the vertices' rule then.
+  const double pixels_per_texel = lod_ == Lod::ConstantZ && s.z_eye > 1e-12 ? constant_z(s)
+                                                                            : most_magnified(visible_part, c_u, c_v, s);
+  uv_lo = glm::dvec2(1e300), uv_hi = glm::dvec2(-1e300);
+  for (const auto& vertex : visible_part) {
     const glm::dvec2 at = vertex.bary.x * s.uv[0] + vertex.bary.y * s.uv[1] + vertex.bary.z * s.uv[2];
     uv_lo = glm::min(uv_lo, at), uv_hi = glm::max(uv_hi, at);
   }
-  ops_ += Ops{/*add*/ 12, /*mul*/ 24, /*div*/ 4, /*sqrt*/ 2, 0, /*lut*/ 1} * uint64_t(visible_part.size());
   const int last = int(levels.size()) - 1;
   int level = 0;
   double m = 1;
@@ -469,6 +499,7 @@ nlohmann::json TexelProjectKernel::details() const {
   for (uint64_t u : unit_round_robin_) busiest_rr = std::max(busiest_rr, u);
   const double covered = covered_ > 0 ? double(covered_) : 1.0;
   return {{"polygons", polygons_},
+          {"lod_rule", lod_ == Lod::ConstantZ ? "constant-z" : "most-magnified"},
           {"lod_computations", lod_computations_},
           {"magnified_polygons", oversampled_},
           {"texels", texels_},

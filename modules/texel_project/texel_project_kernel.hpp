@@ -69,8 +69,13 @@ class TexelProjectKernel {
     DramTiming dram;
     int accumulator_bits = 32;
   };
+  // The LOD rule (pipeline.texel_project.lod): the texel spacing on the screen at the
+  // visible polygon's most magnified point (its clipped vertices), or the paper's rule:
+  // the rotated polygon has one z', its distance from the eye, so one scale for all of
+  // it, f / z' pixels per unit, as if it faced the viewer.
+  enum class Lod { MostMagnified, ConstantZ };
   TexelProjectKernel(const core::Scene& scene, int units, core::NumberFormat format = {},
-                     std::optional<Memory> memory = std::nullopt);
+                     std::optional<Memory> memory = std::nullopt, Lod lod = Lod::MostMagnified);
   static bool needed(const core::Scene& scene);
 
   // The second pass over the frame in `fb`: splat, resolve, composite.
@@ -123,6 +128,9 @@ class TexelProjectKernel {
   void splat_constant(const Splat& s, const core::ClipPolygon& visible_part);
   void rotate_into_plane(const glm::dvec3 P[3], const glm::dvec3& n, const glm::dvec4& clip_a, Splat& s,
                          glm::dvec4& c_u, glm::dvec4& c_v);
+  double most_magnified(const core::ClipPolygon& visible_part, const glm::dvec4& c_u, const glm::dvec4& c_v,
+                        const Splat& s);
+  double constant_z(const Splat& s);
   void choose_level(const core::ClipPolygon& visible_part, const std::vector<const core::Texture*>& levels,
                     const glm::dvec4& c_u, const glm::dvec4& c_v, Splat& s, glm::dvec2& uv_lo, glm::dvec2& uv_hi);
   void bound_samples(const glm::dvec2& uv_lo, const glm::dvec2& uv_hi, Splat& s);
@@ -142,6 +150,7 @@ class TexelProjectKernel {
 
   const core::Scene& scene_;
   int units_;
+  Lod lod_;
   glm::dmat4 view_projection_;
   std::vector<std::vector<core::Texture>> mips_;  // levels 1 … by texture index
   std::vector<double> accumulated_;              // Σ s·c (3 a pixel) and Σ s
