@@ -71,7 +71,7 @@ Command add_compare_command(CLI::App& app) {
   cmd->add_option("a", opt->a, "frame under test")->required();
   cmd->add_option("b", opt->b, "reference frame")->required();
   cmd->add_option("--layer", opt->compare.layers, "layers to compare (default: all present)")
-      ->check(CLI::IsMember({"RGB", "A", "Z", "N"}));
+      ->check(CLI::IsMember({"RGB", "A", "Z", "N", "UV", "H"}));
   // NaN would make every comparison pass (or fail): thresholds are finite numbers ≥ 0.
   const CLI::Validator threshold = finite_in(0, 1e300);
   cmd->add_option("--fail", opt->compare.fail, "a pixel fails over this absolute error")

@@ -14,6 +14,7 @@ namespace {
 
 constexpr uint64_t kPipelinePerPixel = 96;   // the frame's layers and the blocks' buffers
 constexpr uint64_t kGoldenPerPixel = 128;    // the golden model's image and its frame
+constexpr uint64_t kGoldenHitPerPixel = 40;  // and its parallax hit (Image::hit, three float layers)
 constexpr uint64_t kTracePerPixel = 4096;    // a traced pixel's records at every block
 constexpr uint64_t kTexel = 16;              // a float RGBA texel
 
@@ -51,7 +52,10 @@ std::vector<MemoryNeed> run_needs(const core::Scene& s, bool pipeline, bool gold
   const uint64_t pixels = uint64_t(s.camera.width) * uint64_t(s.camera.height);
   std::vector<MemoryNeed> needs;
   if (pipeline) needs.push_back({pixels * kPipelinePerPixel, "camera.resolution"});
-  if (golden) needs.push_back({pixels * kGoldenPerPixel, "camera.resolution"});
+  const bool parallax = std::any_of(s.objects.begin(), s.objects.end(), [&](const core::Object& o) {
+    return s.materials[size_t(o.material)].path == core::ShadingPath::Parallax;
+  });
+  if (golden) needs.push_back({pixels * (kGoldenPerPixel + (parallax ? kGoldenHitPerPixel : 0)), "camera.resolution"});
   if (traced_pixels > 0) needs.push_back({traced_pixels * kTracePerPixel, "--trace-region"});
   if (pipeline)
     for (size_t m = 0; m < s.materials.size(); ++m) {

@@ -11,7 +11,8 @@ namespace shadetlm::core {
 namespace {
 const std::vector<std::pair<std::string, std::vector<std::string>>>& layer_table() {
   static const std::vector<std::pair<std::string, std::vector<std::string>>> t = {
-      {"RGB", {"R", "G", "B"}}, {"A", {"A"}}, {"Z", {"Z"}}, {"N", {"N.X", "N.Y", "N.Z"}}};
+      {"RGB", {"R", "G", "B"}}, {"A", {"A"}}, {"Z", {"Z"}}, {"N", {"N.X", "N.Y", "N.Z"}},
+      {"UV", {"parallax.u", "parallax.v"}}, {"H", {"parallax.height"}}};
   return t;
 }
 
@@ -122,12 +123,15 @@ CompareResult compare_frames(const Frame& a, const Frame& b, const CompareOption
   r.coverage = coverage_of(a, b, covered);
   for (const auto& [layer, names] : layer_table()) {
     const bool asked = std::find(opt.layers.begin(), opt.layers.end(), layer) != opt.layers.end();
+    // A frame may lack these unless they are asked for: A (the coverage), and the
+    // parallax hit (UV, H), which frames written before it was added lack.
+    const bool optional = layer == "A" || layer == "UV" || layer == "H";
     std::vector<std::string> chans;
     for (const auto& n : names) {
       const bool in_a = a.find(n) != nullptr, in_b = b.find(n) != nullptr;
       if (in_a && in_b) {
         chans.push_back(n);
-      } else if ((in_a || in_b) && ((opt.layers.empty() && layer != "A") || asked)) {  // A alone: when asked
+      } else if ((in_a || in_b) && ((opt.layers.empty() && !optional) || asked)) {
         r.pass = false;
         r.problem += (r.problem.empty() ? "" : "; ") + std::string("channel ") + n + " is only in " + (in_a ? "A" : "B");
       }

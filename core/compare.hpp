@@ -1,7 +1,9 @@
 #pragma once
 // The io component (shadetlm::io), all of this header.
-// Frame comparison, per layer: RGB (R, G, B), A (coverage), Z (depth) and N (N.X, N.Y,
-// N.Z). A pixel's error in a layer is the largest absolute difference over the layer's
+// Frame comparison, per layer: RGB (R, G, B), A (coverage), Z (depth), N (N.X, N.Y,
+// N.Z), and on the parallax path UV (parallax.u, .v: the traced hit) and H
+// (parallax.height). A and the hit layers are compared when both frames have them, and
+// a frame lacking them is a failure only when they are asked for. A pixel's error in a layer is the largest absolute difference over the layer's
 // channels; two equal values (infinities included) differ by 0, a finite and a
 // non-finite value by +inf.
 //
@@ -23,7 +25,7 @@
 namespace shadetlm::core {
 
 struct CompareOptions {
-  std::vector<std::string> layers;  // "RGB", "A", "Z", "N"; empty: every layer either frame has
+  std::vector<std::string> layers;  // "RGB", "A", "Z", "N", "UV", "H"; empty: every layer either frame has
   double fail = 1e-6;
   double fail_percent = 0;
   double hard_fail = std::numeric_limits<double>::infinity();

@@ -55,6 +55,7 @@ ParallaxHit parallax_hit(const core::Texture& map, glm::dvec2 uv0, glm::dvec3 d,
     }
   }
   r.uv = uv0 + r.t * glm::dvec2(d.x, d.y);
+  r.height = std::clamp(1 + r.t * dh, 0.0, 1.0);
   // The exit of the first solid piece: the march goes on until the ray is above again.
   r.t_exit = t_floor;
   for (double t = r.t; t < t_floor;) {

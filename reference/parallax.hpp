@@ -18,6 +18,7 @@ struct ParallaxHit {
   glm::dvec2 uv{0};     // where the ray first meets the relief
   double t = 0;         // the ray's parameter there (0: the entry)
   double t_exit = 0;    // where the ray leaves the first solid piece again (or the floor)
+  double height = 1;    // the ray's height there, in [0, 1] (the relief's; 0 on the floor)
   bool traced = false;  // false: depth ≤ 0, or a ray parallel to the surface or leaving it
 };
 ParallaxHit parallax_hit(const core::Texture& height_map, glm::dvec2 uv0, glm::dvec3 d, double depth);

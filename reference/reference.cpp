@@ -151,6 +151,8 @@ Image blank_image(const core::Scene& scene) {
   img.alpha.assign(n, 0.0);
   img.depth.assign(n, std::numeric_limits<double>::infinity());
   img.normal.assign(n, glm::dvec3(0));
+  for (const core::Object& o : scene.objects)
+    if (scene.materials[size_t(o.material)].path == core::ShadingPath::Parallax) img.hit.assign(n, glm::dvec3(0));
   return img;
 }
 
@@ -256,28 +258,26 @@ bool make_fragment(const View& view, const WorldTriangle& tri, int px, int py, F
   return true;
 }
 
-// The uv where the view ray from `eye` through X meets the relief of the material's
-// height map (parallax path).
-glm::dvec2 parallax_uv(const core::Scene& scene, const core::Material& material, const WorldTriangle& tri,
-                       const glm::dvec2& uv, const glm::dvec3& X, const glm::dvec3& eye) {
+// Where the view ray from `eye` through X meets the relief of the material's height map
+// (parallax path).
+ParallaxHit parallax_trace(const core::Scene& scene, const core::Material& material, const WorldTriangle& tri,
+                           const glm::dvec2& uv, const glm::dvec3& X, const glm::dvec3& eye) {
   // The view ray in the relief's frame: Pu, Pv and the normal on the side of
   // the vertex normals, scaled to one uv unit (docs/parallax.md).
   const glm::dvec3 across = glm::cross(tri.Pu, tri.Pv);
   const double area = glm::length(across);
   const glm::dmat3 frame(tri.Pu, tri.Pv, tri.sign * across / area * std::sqrt(area));
   const glm::dvec3 d = glm::inverse(frame) * (X - eye);
-  return parallax_hit(scene.textures[material.height_map], uv, d, material.parallax.depth).uv;
+  return parallax_hit(scene.textures[material.height_map], uv, d, material.parallax.depth);
 }
 
 // The colour texture's value at a fragment with texture coordinates uv (1 without a
-// texture): the footprint average on the texturing paths, else one bilinear read (on
-// the parallax path where the view ray meets the relief).
+// texture): the footprint average on the texturing paths, else one bilinear read at
+// tex_uv (on the parallax path where the view ray meets the relief, else uv).
 glm::dvec3 texture_value(const core::Scene& scene, const core::Material& material, const View& view,
-                         const WorldTriangle& tri, const Fragment& frag, const glm::dvec2& uv) {
+                         const WorldTriangle& tri, const Fragment& frag, const glm::dvec2& uv,
+                         const glm::dvec2& tex_uv) {
   glm::dvec3 tex(1);
-  glm::dvec2 tex_uv = uv;
-  if (material.path == core::ShadingPath::Parallax && glm::length(glm::cross(tri.Pu, tri.Pv)) > 0)
-    tex_uv = parallax_uv(scene, material, tri, uv, frag.X, view.eye);
   if (material.path == core::ShadingPath::TextureScreen || material.path == core::ShadingPath::TextureObject) {
     tex = footprint_average(scene.textures[material.texture], frag.px, frag.py, view.eye, view.fwd,
                             view.right * (view.tan_half * view.aspect), view.up * view.tan_half, tri.P, tri.Ng,
@@ -292,6 +292,7 @@ glm::dvec3 texture_value(const core::Scene& scene, const core::Material& materia
 // normal in the space its path lights in (Image::normal).
 struct ShadedPixel {
   glm::dvec3 color, normal;
+  glm::dvec3 hit{0};  // parallax path: the hit's u, v and height (Image::hit)
 };
 
 // Shades a fragment by its material's path: the interpolated normal and uv, the colour
@@ -301,8 +302,17 @@ ShadedPixel shade_fragment(const core::Scene& scene, const core::Object& object,
   const double b0 = frag.b0, b1 = frag.b1, b2 = frag.b2;
   const glm::dvec3 N = glm::normalize(b0 * tri.N[0] + b1 * tri.N[1] + b2 * tri.N[2]);
   const glm::dvec2 uv = b0 * tri.uv[0] + b1 * tri.uv[1] + b2 * tri.uv[2];
-  const glm::dvec3 tex = texture_value(scene, material, view, tri, frag, uv);
   ShadedPixel shaded;
+  glm::dvec2 tex_uv = uv;
+  if (material.path == core::ShadingPath::Parallax) {
+    shaded.hit = glm::dvec3(uv, 1.0);  // untraced: the polygon itself
+    if (glm::length(glm::cross(tri.Pu, tri.Pv)) > 0) {
+      const ParallaxHit hit = parallax_trace(scene, material, tri, uv, frag.X, view.eye);
+      tex_uv = hit.uv;
+      shaded.hit = glm::dvec3(hit.uv, hit.height);
+    }
+  }
+  const glm::dvec3 tex = texture_value(scene, material, view, tri, frag, uv, tex_uv);
   if (core::bump_path(material.path)) {
     const glm::dvec3 bumped = bump_normal(scene, object, material, N, uv, tri.Pu, tri.Pv, tri.sign, shaded.normal);
     shaded.color = shade(scene, material, frag.X, bumped, tex);
@@ -319,6 +329,7 @@ void write_pixel(Image& img, size_t i, double depth, const ShadedPixel& shaded) 
   img.alpha[i] = 1;
   img.normal[i] = shaded.normal;
   img.color[i] = shaded.color;
+  if (!img.hit.empty()) img.hit[i] = shaded.hit;
 }
 
 // Draws pixel (px, py) of a triangle that covers it, where it is nearer than what the
@@ -394,6 +405,12 @@ core::Frame to_frame(const Image& img) {
     (*ch[3])[i] = float(img.alpha[i]);
     (*ch[4])[i] = float(img.depth[i]);
     for (int k = 0; k < 3; ++k) (*ch[5 + k])[i] = float(img.normal[i][k]);
+  }
+  if (!img.hit.empty()) {
+    f.add("parallax.u"), f.add("parallax.v"), f.add("parallax.height");
+    std::vector<float>* hit[3] = {&f.at("parallax.u"), &f.at("parallax.v"), &f.at("parallax.height")};
+    for (size_t i = 0; i < f.pixel_count(); ++i)
+      for (int k = 0; k < 3; ++k) (*hit[k])[i] = float(img.hit[i][k]);
   }
   return f;
 }

@@ -35,6 +35,10 @@ struct Image {
   // bump-classic), tangent (bump-tangent, bump-square), object (bump-object); 0 where
   // nothing is covered.
   std::vector<glm::dvec3> normal;
+  // Where a scene has a parallax material: the exact hit of the view ray with the relief
+  // (u, v, height in [0, 1]; the polygon's own uv and 1 where nothing is traced), 0 on
+  // other surfaces and the background; written as parallax.u, .v, .height. Else empty.
+  std::vector<glm::dvec3> hit;
   size_t index(int x, int y) const { return size_t(y) * width + x; }
 };
 

@@ -6,6 +6,8 @@
 
 #include "shadetlm/core/parallax_map.hpp"
 #include "shadetlm/modules/parallax/parallax_kernel.hpp"
+#include "shadetlm/modules/pipeline/pipeline.hpp"
+#include "shadetlm/reference/reference.hpp"
 #include "shadetlm/reference/parallax.hpp"
 #include "test_util.hpp"
 
@@ -462,4 +464,41 @@ TEST_CASE("the box-gap transform stays exact on a 4096-texel line", "[parallax]"
         CHECK(m.at(x, 0, k) == Approx(best).margin(1e-6));
       }
     }
+}
+
+TEST_CASE("the hit layers: the pipeline's traced hit against the golden model's exact one, pixel by pixel",
+          "[parallax]") {
+  // docs/parallax.md, "The hit layers": parallax.u, .v, .height in both frames, so the
+  // tracer's error is read per pixel instead of through a colour texture.
+  const std::string scene_file = test::source_path("scenes/parallax/steps.json");
+  auto within = [&](const std::string& map) {  // the share of covered pixels within 1e-3 texel of the exact hit
+    const core::Scene scene = core::load_scene(scene_file, {"materials.carved.parallax.map=" + map,
+                                                            "camera.resolution=[96,64]"});
+    const core::Frame got = modules::render_loop(scene).frame;
+    const core::Frame exact = reference::to_frame(reference::render(scene));
+    const auto &a = exact.at("A"), &u = got.at("parallax.u"), &v = got.at("parallax.v");
+    const auto &eu = exact.at("parallax.u"), &ev = exact.at("parallax.v"), &eh = exact.at("parallax.height");
+    size_t covered = 0, close = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+      if (a[i] == 0) {  // the background: 0 in both
+        CHECK(u[i] == 0.0f);
+        CHECK(eu[i] == 0.0f);
+        continue;
+      }
+      ++covered;
+      REQUIRE(eh[i] >= 0.0f);
+      REQUIRE(eh[i] <= 1.0f);
+      close += std::hypot((u[i] - eu[i]) * 128.0, (v[i] - ev[i]) * 128.0) <= 1e-3;  // 128 texels a side
+    }
+    REQUIRE(covered > 1000);
+    return double(close) / double(covered);
+  };
+  const double box_gap = within("box-gap"), donnelly = within("donnelly");
+  INFO("within 1e-3 texel: box-gap " << box_gap << ", Donnelly " << donnelly);
+  CHECK(box_gap >= 0.995);  // safe, then exact cells: all but edge pixels where float picks the other side of a step
+  CHECK(donnelly < 0.9);    // centre distances, trilinear: converges about half a voxel off the relief
+  // A scene without a parallax material has no hit layers.
+  const core::Scene plain = core::load_scene(test::source_path("golden/sphere/scene.json"), {"camera.resolution=[32,24]"});
+  CHECK(modules::render_loop(plain).frame.find("parallax.u") == nullptr);
+  CHECK(reference::to_frame(reference::render(plain)).find("parallax.u") == nullptr);
 }

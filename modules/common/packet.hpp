@@ -103,6 +103,7 @@ struct SpanPacket {
   float bump[3][kSpanMax]; // bump_fetch: the filtered normal N' (fetched paths) or Fu, Fv (classic)
   float uvp[2][kSpanMax];  // parallax: uv where the view ray meets the relief
   float iterations[kSpanMax];  // parallax: the tracer's iterations
+  float hit_height[kSpanMax];  // parallax: the relief's height (0 … 1) at uvp, 1 where untraced
   float tex[3][kSpanMax]; // texture_fetch: colour texture
   float rgb[3][kSpanMax]; // lighting (texture-object: the ambient and diffuse factor D)
   float spec[3][kSpanMax]; // lighting, texture-object only: the specular term S (C = tex ⊙ D + S later)

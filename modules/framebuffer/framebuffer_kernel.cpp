@@ -22,10 +22,17 @@ FramebufferKernel::FramebufferKernel(const core::Scene& scene, bool deferred, st
                          std::numeric_limits<float>::infinity(), 0.0f, 0.0f, 0.0f};
   for (int k = 0; k < 8; ++k) frame_.add(names[k], fill[k]);
   for (int k = 0; k < 8; ++k) layer_[k] = frame_.at(names[k]).data();
-  // The parallax tracer's iterations per pixel, where a scene has a parallax material.
+  // The parallax tracer's iterations and hit per pixel, where a scene has a parallax
+  // material; the golden model writes the exact hit in the same layers.
+  bool parallax = false;
   for (const auto& o : scene.objects)
-    if (scene.materials[size_t(o.material)].path == core::ShadingPath::Parallax)
-      iterations_ = frame_.add("parallax.iterations").data();
+    parallax = parallax || scene.materials[size_t(o.material)].path == core::ShadingPath::Parallax;
+  if (parallax) {
+    for (const char* name : {"parallax.iterations", "parallax.u", "parallax.v", "parallax.height"}) frame_.add(name);
+    iterations_ = frame_.at("parallax.iterations").data();
+    hit_[0] = frame_.at("parallax.u").data(), hit_[1] = frame_.at("parallax.v").data();
+    hit_[2] = frame_.at("parallax.height").data();
+  }
   for (int k = 0; k < 8; ++k) layer_[k] = frame_.at(names[k]).data();  // adding may move the channels
 }
 
@@ -66,7 +73,12 @@ void FramebufferKernel::process(SpanPacket& p) {
   for (int c = 0; c < 3; ++c) bad += copy_counting_nonfinite(layer_[5 + c] + base, p.n[c], n);
   if (iterations_) {  // 0 where a nearer surface without parallax covers the pixel
     const bool parallax = p.tri->material->path == core::ShadingPath::Parallax;
-    for (int i = 0; i < n; ++i) iterations_[base + size_t(i)] = parallax ? p.iterations[i] : 0.0f;
+    for (int i = 0; i < n; ++i) {
+      const size_t at = base + size_t(i);
+      iterations_[at] = parallax ? p.iterations[i] : 0.0f;
+      const float hit[3] = {p.uvp[0][i], p.uvp[1][i], p.hit_height[i]};
+      for (int k = 0; k < 3; ++k) hit_[k][at] = parallax && std::isfinite(hit[k]) ? hit[k] : 0.0f;  // counted upstream
+    }
   }
   const bool splatted = p.tri->material->path == core::ShadingPath::TextureObject;
   if (splatted) bad += count_nonfinite(p.spec, n);

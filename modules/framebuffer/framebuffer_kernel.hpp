@@ -1,7 +1,8 @@
 #pragma once
 // The framebuffer: colour, coverage, depth (w, the eye-space depth) and normal layers
 // of the frame, laid out as the golden model's (docs/golden-model.md), and the parallax
-// tracer's iterations per pixel where a scene has a parallax material. Depth testing
+// tracer's iterations and traced hit (parallax.u, .v, .height) per pixel where a scene
+// has a parallax material. Depth testing
 // happened early, in the raster block; a later packet at the same pixel is nearer.
 #include <memory>
 #include <optional>
@@ -57,6 +58,7 @@ class FramebufferKernel {
   core::Frame frame_;
   float* layer_[8];  // R, G, B, A, Z, N.X, N.Y, N.Z
   float* iterations_ = nullptr;  // parallax.iterations, if the scene has a parallax material
+  float* hit_[3] = {};           // parallax.u, .v, .height, likewise
   Ops ops_;           // stores only: no arithmetic
   std::unique_ptr<MemoryClient> memory_;  // none: ideal memory
   Surface colour_;

@@ -454,6 +454,8 @@ void ParallaxKernel::process(SpanPacket& p) {
     p.uvp[0][i] = moved ? u + (r.x - x0) / W : u;
     p.uvp[1][i] = moved ? v - (r.y - y0) / H : v;
     p.iterations[i] = float(r.iterations);
+    // For the hit layers (an observation: no operation, read or cycle of the tracer).
+    p.hit_height[i] = moved ? core::bilinear_height<float>(maps.field, r.x, r.y) : 1.0f;
     iterations += uint64_t(r.iterations);
     work_[i] = uint16_t(std::min<int64_t>(parallax_cycles(r, cell_cycles_), 65535));
   }
