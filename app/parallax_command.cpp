@@ -159,6 +159,8 @@ std::vector<Method> methods_to_compare(const core::ParallaxSettings& base, const
   auto with = [&](const std::string& name, core::ParallaxMethod m, core::DistanceMap map = core::DistanceMap::Refined) {
     core::ParallaxSettings s = base;
     s.method = m, s.map = map;
+    s.map_file.clear();  // each method's own map, built
+    if (map == core::DistanceMap::Donnelly && m == core::ParallaxMethod::Distance) s.early_exit = false;  // as published
     methods.push_back({name, s});
   };
   with("offset", core::ParallaxMethod::Offset);

@@ -55,7 +55,7 @@ void write_volume_map(const std::string& path, const VolumeMap& map, const std::
 
 VolumeMap read_volume_map(const std::string& path) {
   const Frame f = read_exr(path);
-  check_kind(f, path, {"box-gap", "refined", "donnelly"});
+  check_kind(f, path, {"box-gap", "refined", "donnelly", "distance"});
   VolumeMap m;
   m.width = f.width, m.height = f.height;
   m.slices = attribute_int(f, path, "shadetlm:slices");
@@ -72,6 +72,7 @@ VolumeMap read_volume_map(const std::string& path) {
     }
   }
   m.params = f.attributes;
+  if (m.params["shadetlm:map"] == "distance") m.params["shadetlm:map"] = "box-gap";  // its name before Donnelly's map
   return m;
 }
 

@@ -66,7 +66,7 @@ def label(r):
         return SHORT.get(c.get("filter", c["path"]), c.get("filter", c["path"]))
     if r["family"] == "parallax":
         tracer = c["map"] if "map" in c else c.get("method", "refined")
-        return tracer if tracer == "offset" else "%s %s" % (tracer, c["max_iterations"])
+        return tracer if tracer == "offset" else "%s %s" % (tracer, c.get("max_iterations", c.get("steps")))
     return ",".join(v for k, v in c.items() if k != "number_format")
 
 

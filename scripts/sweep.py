@@ -121,10 +121,12 @@ def plan():
     tracers = [{}] + [{"parallax.method": "distance", "parallax.map": m} for m in ["box-gap", "donnelly"]] + [
         {"parallax.method": m} for m in ["cone", "relief", "pom", "steep", "offset"]]
     for tracer in tracers:
+        # Donnelly's tracer takes a fixed count of steps (parallax.steps), the others a cap.
+        limit = "parallax.steps" if tracer.get("parallax.map") == "donnelly" else "parallax.max_iterations"
         for cap in [256] if tracer.get("parallax.method") == "offset" else [16, 64, 256]:  # offset: no loop
             for fmt in FORMATS:
                 sets = {"materials.carved.%s" % k: v for k, v in tracer.items()}
-                sets.update({"materials.carved.parallax.max_iterations": cap, "pipeline.number_format": fmt})
+                sets.update({"materials.carved." + limit: cap, "pipeline.number_format": fmt})
                 runs.append(("parallax", "golden/parallax-steps/scene.json", sets))
     return runs
 

@@ -2,7 +2,10 @@
 """The texturing report (docs/object-space-texturing.md): object-space texturing
 (texel_project) against the screen-space filters of the texture unit, on a checker, a
 fine line pattern and a photograph, on planes at 0°, 45°, 75° and 85° from the view
-direction and on a sphere, against the footprint-averaged golden model. Prints Markdown.
+direction and on a sphere, against the footprint-averaged golden model, with both of
+texel_project's LOD rules; then the plane every 5° from 0° to 85°, object space against
+16-probe anisotropic filtering, and the angles where anisotropic filtering starts to
+win. Prints Markdown.
 
 Usage: scripts/texture-report.py SHADETLM_BINARY PHOTO_PNG_OR_EMPTY [--images DIR]"""
 import json
@@ -99,7 +102,8 @@ for texture in TEXTURES:
         for label, path, filt, probes in CONFIGS:
             preview = None
             if IMAGES and texture == "checker" and view == 85:
-                preview = os.path.join(IMAGES, "texture-85-%s.png" % label.split(" ")[0].lower())
+                name = "object-z" if "z′" in label else label.split(" ")[0].lower()
+                preview = os.path.join(IMAGES, "texture-85-%s.png" % name)
             results[(texture, view, label)] = figures(render(doc, path, filt, probes, preview=preview), path)
         if IMAGES and texture == "checker" and view == 85:  # and the golden model's
             with open(os.path.join(TMP, "golden.json"), "w") as f:

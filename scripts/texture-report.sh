@@ -2,9 +2,10 @@
 # The texturing report: prints the Markdown tables that docs/object-space-texturing.md
 # keeps (accuracy of object-space texturing and of each screen-space filter against the
 # footprint-averaged golden model; texel fetches, arithmetic, LOD computations and holes
-# per pixel; parallel splat units). The photograph is skimage's astronaut (CC0), taken
+# per pixel; parallel splat units; the plane every 5° against 16-probe anisotropic
+# filtering, and the crossover angles). The photograph is skimage's astronaut (CC0), taken
 # from the Debian package python3-skimage into out/assets (downloaded, not installed;
-# without it the photograph's table is left out). About 120 renders, a few minutes.
+# without it the photograph's table is left out). About 300 renders (the angle sweep: 162), several minutes.
 # Usage: scripts/texture-report.sh [--doc] [--images DIR]   (--doc: the tables into
 #   docs/object-space-texturing.md, between their markers)
 set -euo pipefail

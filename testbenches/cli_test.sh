@@ -171,9 +171,12 @@ expect_output px-map-file-other-height "shadetlm:height_checksum"
 check px-map-file-donnelly 2 "$bin" render "${px[@]}" -o "$tmp/px/bad.exr" \
   --set "materials.carved.parallax.map_file=$tmp/px/refined.exr" --set materials.carved.parallax.map=donnelly
 expect_output px-map-file-donnelly "shadetlm:map"
+check px-donnelly-built 0 "$bin" render "${px[@]}" -o "$tmp/px/donnelly-built.exr" \
+  --set materials.carved.parallax.map=donnelly --set materials.carved.parallax.slices=8 --set materials.carved.parallax.steps=24
 check px-donnelly-map-file 0 "$bin" render "${px[@]}" -o "$tmp/px/donnelly.exr" \
   --set "materials.carved.parallax.map_file=$tmp/px/donnellymap.exr" --set materials.carved.parallax.map=donnelly \
-  --set textures.relief.file="$tmp/h64.png" --set materials.carved.parallax.slices=8
+  --set materials.carved.parallax.slices=8 --set materials.carved.parallax.steps=24
+check px-donnelly-map-file-same 0 "$bin" compare "$tmp/px/donnelly.exr" "$tmp/px/donnelly-built.exr" --fail 0
 check px-steps-not-donnelly 2 "$bin" render "${px[@]}" -o "$tmp/px/bad.exr" --set materials.carved.parallax.steps=8
 expect_output px-steps-not-donnelly "steps"
 expect_no_file px-map-file-refused "$tmp/px/bad.exr"

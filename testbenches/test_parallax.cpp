@@ -131,14 +131,14 @@ TEST_CASE("the distance map is the box-gap transform, against brute force", "[pa
 
 TEST_CASE("the refined map is never below the box-gap map, and reaches further somewhere", "[parallax]") {
   const core::HeightField f = core::height_field(steps_map(), "map", "");
-  const core::VolumeMap donnelly = core::box_gap_map(f, 16);
-  const core::VolumeMap refined = core::refined_map(f, donnelly, core::RefinedParams{});
+  const core::VolumeMap box_gap = core::box_gap_map(f, 16);
+  const core::VolumeMap refined = core::refined_map(f, box_gap, core::RefinedParams{});
   size_t larger = 0;
-  for (size_t v = 0; v < donnelly.values.size(); ++v) {
-    REQUIRE(refined.values[v] >= donnelly.values[v]);
-    larger += refined.values[v] > donnelly.values[v] + 0.5f;
+  for (size_t v = 0; v < box_gap.values.size(); ++v) {
+    REQUIRE(refined.values[v] >= box_gap.values[v]);
+    larger += refined.values[v] > box_gap.values[v] + 0.5f;
   }
-  CHECK(larger > donnelly.values.size() / 20);
+  CHECK(larger > box_gap.values.size() / 20);
 }
 
 TEST_CASE("safe maps never pass the exact hit, the refined map by at most its documented tolerance", "[parallax]") {
@@ -175,20 +175,20 @@ TEST_CASE("the refined map needs fewer iterations than the box-gap map on the me
   // a step lands, so a longer step can land where the next read is shorter); the mean
   // and the per-voxel values (test above) do.
   const core::Texture map = steps_map();
-  const auto donnelly_s = settings(core::ParallaxMethod::Distance, core::DistanceMap::BoxGap);
+  const auto box_gap_s = settings(core::ParallaxMethod::Distance, core::DistanceMap::BoxGap);
   const auto refined_s = settings(core::ParallaxMethod::Distance, core::DistanceMap::Refined);
-  const auto donnelly = modules::build_parallax_maps(map, donnelly_s, "map");
+  const auto box_gap = modules::build_parallax_maps(map, box_gap_s, "map");
   const auto refined = modules::build_parallax_maps(map, refined_s, "map");
   for (double elevation : {60.0, 30.0, 15.0}) {
     const View v = view(elevation, 48);
-    double sum_d = 0, sum_r = 0;
+    double sum_b = 0, sum_r = 0;
     for (const glm::dvec2& e : v.entries) {
       const float x = float(e.x * 64 - 0.5), y = float((1 - e.y) * 64 - 0.5);
-      sum_d += modules::trace_parallax(donnelly_s, donnelly, x, y, float(v.d.x), float(v.d.y), float(v.d.z)).iterations;
+      sum_b += modules::trace_parallax(box_gap_s, box_gap, x, y, float(v.d.x), float(v.d.y), float(v.d.z)).iterations;
       sum_r += modules::trace_parallax(refined_s, refined, x, y, float(v.d.x), float(v.d.y), float(v.d.z)).iterations;
     }
-    INFO(elevation << "°: Donnelly " << sum_d / double(v.entries.size()) << ", refined " << sum_r / double(v.entries.size()));
-    CHECK(sum_r < sum_d);
+    INFO(elevation << "°: box-gap " << sum_b / double(v.entries.size()) << ", refined " << sum_r / double(v.entries.size()));
+    CHECK(sum_r < sum_b);
   }
 }
 
@@ -275,6 +275,9 @@ TEST_CASE("maps go to EXR with their parameters and come back, bad files named",
   core::write_volume_map((dir / "r.exr").string(), m, "refined");
   const core::VolumeMap back = core::read_volume_map((dir / "r.exr").string());
   CHECK(back.values == m.values);
+  // A box-gap map written before it was renamed ("distance") reads as one.
+  core::write_volume_map((dir / "old.exr").string(), core::box_gap_map(f, 8), "distance");
+  CHECK(core::read_volume_map((dir / "old.exr").string()).params.at("shadetlm:map") == "box-gap");
   CHECK(back.params.at("shadetlm:min_elevation_deg") == "10");
   const core::ConeMap c = core::cone_map(f, 8, 32);
   core::write_cone_map((dir / "c.exr").string(), c);

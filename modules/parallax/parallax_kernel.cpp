@@ -236,8 +236,10 @@ bool trace_spheres(const core::ParallaxSettings& s, const ParallaxMaps& m, const
 
 // Donnelly's tracing as published: a fixed count of sphere steps p ← p + d(p)·v̂, d read
 // trilinearly from the Euclidean map, no finish; the point after the last step is the
-// hit. With early exit the loop stops once a step would move under kDonnellyConverged
-// voxel (it has converged); without, every pixel pays s.steps.
+// hit. Without early exit (as published) every pixel pays s.steps, capped at
+// max_iterations; with it the loop stops once a step would move under
+// kDonnellyConverged voxel, or at the floor, a little short of where the fixed count
+// would end.
 constexpr float kDonnellyConverged = 1.0f / 64;
 template <class T>
 bool trace_donnelly(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& x, T& y, T& z,
@@ -259,6 +261,11 @@ bool trace_donnelly(const core::ParallaxSettings& s, const ParallaxMaps& m, cons
       if (ops) *ops += Ops{/*add*/ 2, /*mul*/ 2, /*div*/ 1};
       break;
     }
+  }
+  if (!s.early_exit) {  // the fixed count: the steps after the floor still read the map
+    const int idle = steps - std::min(steps, r.iterations);
+    r.iterations += idle, r.trilinear += idle, r.fetches += 8 * idle;
+    if (ops) *ops += kOpsTrilinearSphere * uint64_t(idle);
   }
   return true;
 }
