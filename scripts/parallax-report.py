@@ -150,7 +150,8 @@ print("Each tracer renders the scene; the golden model renders it once with the 
 print("| scene | method | pixels within 1e-3 texel | RMS uv error (texels) | max uv error (texels) | RMS height error |")
 print("|---|---|---|---|---|---|")
 tracers = [("offset", {"method": "offset"}), ("steep", {"method": "steep"}), ("pom", {"method": "pom"}),
-           ("relief", {"method": "relief"}), ("donnelly", {"map": "donnelly"}), ("box-gap", {"map": "box-gap"}),
+           ("relief", {"method": "relief"}), ("donnelly", {"map": "donnelly", "early_exit": "false"}),
+           ("box-gap", {"map": "box-gap"}),
            ("refined m=0", {"margin": 0}), (head, {"margin": headline}), ("cone", {"method": "cone"})]
 frame_scenes = [("sharp-step quad", os.path.join(root, "scenes/parallax/steps.json"), 128)]
 frame_scenes += [(name.split(" (")[0] + " quad", dict(maps)[name], r["size"][0]) for name, r in results[4:5]]
