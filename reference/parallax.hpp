@@ -1,9 +1,9 @@
 #pragma once
 // The golden model's parallax: the exact first intersection of a view ray with the
 // bilinearly interpolated height field, in double precision (docs/parallax.md). Its own
-// code, independent of the pipeline's tracers and of core's exact cell test: a dense
-// march of at most 1/8 texel (and 1/512 of the depth) per step, then bisection to 1e-9
-// texel.
+// code, independent of the pipeline's tracers and of core's exact cell test: it walks
+// the cells the ray crosses and solves, per cell, the quadratic that the ray's height
+// above the cell's bilinear patch is along the ray.
 #include <glm/glm.hpp>
 
 #include "shadetlm/core/texture.hpp"
