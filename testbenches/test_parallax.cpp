@@ -128,6 +128,55 @@ TEST_CASE("the distance map is the box-gap transform, against brute force", "[pa
       }
 }
 
+TEST_CASE("the golden model finds a hit that lies exactly on a cell border", "[parallax]") {
+  // A review found rounding could put the root just past one cell's end and just before
+  // the next one's start, so that neither took it (a miss of up to a texel). Each ray
+  // here passes through a point of the relief on a texel border (x = k, and on half of
+  // them y = m too): it is aimed at it from the polygon. Its first hit is there or
+  // before. Where the golden model and core's cell walk (a separate code) differ, the
+  // earlier of the two must be a real contact (the ray on or under the relief).
+  for (const core::Texture& map : {noise_map(), steps_map()}) {
+    const core::HeightField f = core::height_field(map, "map", "");
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> uni(0, 1);
+    int agree = 0, total = 0, golden_right = 0, march_right = 0;
+    for (int n = 0; n < 20000; ++n) {
+      const double el = glm::radians(2 + 80 * uni(rng)), az = 6.2831853 * uni(rng);
+      const glm::dvec3 d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), -std::sin(el));
+      const double depth = 0.05, D = 16;
+      const double hx = double(1 + int(60 * uni(rng))), hy = n % 2 ? double(1 + int(60 * uni(rng))) : 1 + 60 * uni(rng);
+      const double h = core::bilinear_height<double>(f, hx, hy);
+      const double t = (1 - h) * depth / -d.z;  // the ray's parameter at that point
+      const glm::dvec2 uv0 = glm::dvec2((hx + 0.5) / 64, 1 - (hy + 0.5) / 64) - t * glm::dvec2(d.x, d.y);
+      const auto exact = reference::parallax_hit(map, uv0, d, depth);
+      const auto march = core::march_cells<double>(f, uv0.x * 64 - 0.5, (1 - uv0.y) * 64 - 0.5, D, d.x * 64,
+                                                   -d.y * 64, d.z * D / depth, D);
+      ++total;
+      if (std::abs(march.t - exact.t) * glm::length(glm::dvec2(d) * 64.0) < 1e-6) {
+        ++agree;
+        continue;
+      }
+      // They differ: the earlier of the two must be a point on or under the relief (the
+      // other one missed it). Heights in slices; both t in the ray's parameter.
+      auto under = [&](double t_uv) {  // the ray at t (golden units) on or under the relief, within 1e-9 slice
+        const double x = uv0.x * 64 - 0.5 + t_uv * d.x * 64, y = (1 - uv0.y) * 64 - 0.5 - t_uv * d.y * 64;
+        return D * (1 + t_uv * d.z / depth) <= D * core::bilinear_height<double>(f, x, y) + 1e-9;
+      };
+      const double t_march = march.t;
+      if (exact.t < t_march) golden_right += under(exact.t);
+      else march_right += under(t_march);
+    }
+    // Measured: core's cell walk misses such contacts on 0.2–0.6 % of these rays (its
+    // roots on a border, the defect the review found in the golden model; docs/parallax.md
+    // "Left open"); the golden model never is the one that misses.
+    INFO(agree << " of " << total << " rays through a border point agree to 1e-6 texel; where not, the earlier "
+               << "hit is real: golden " << golden_right << ", core " << march_right);
+    CHECK(march_right == 0);
+    CHECK(golden_right == total - agree);
+    CHECK(agree >= total * 99 / 100);
+  }
+}
+
 TEST_CASE("the refined map is never below the box-gap map, and reaches further somewhere", "[parallax]") {
   const core::HeightField f = core::height_field(steps_map(), "map", "");
   const core::VolumeMap box_gap = core::box_gap_map(f, 16);
