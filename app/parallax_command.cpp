@@ -1,4 +1,4 @@
-// shadetlm precompute boxgapmap|donnellymap|refinedmap|conemap HEIGHT -o map.exr [--slices D] …
+// shadetlm precompute boxgapmap|donnellymap|refinedmap|conemap|relaxedconemap HEIGHT -o map.exr [--slices D] …
 // shadetlm parallax-bench [SCENE] [--material M] [--elevations 60,30,15,5] [--json out.json]
 //
 // The parallax paper's maps, and the measurement behind docs/parallax.md: every tracer
@@ -41,7 +41,7 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
     int slices = 16, levels = 0;
     core::RefinedParams refined;
   };
-  for (const char* kind : {"boxgapmap", "donnellymap", "refinedmap", "conemap"}) {
+  for (const char* kind : {"boxgapmap", "donnellymap", "refinedmap", "conemap", "relaxedconemap"}) {
     auto opt = std::make_shared<Options>();
     opt->output = std::string("out/") + kind + ".exr";
     const std::string k = kind;
@@ -49,7 +49,9 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
         kind, k == "boxgapmap"     ? "the box-gap distance map, safe for nearest reads (parallax, docs/parallax.md)"
               : k == "donnellymap" ? "Donnelly's Euclidean distance map, as published"
               : k == "refinedmap"  ? "the parallax paper's refined distance map"
-                                   : "a safe cone map for cone stepping");
+              : k == "conemap"     ? "a safe cone map for cone stepping"
+                                   : "a safe relaxed cone map for relaxed cone stepping");
+    const bool cones = k == "conemap" || k == "relaxedconemap";
     if (k == "boxgapmap") cmd->alias("distancemap");  // its name before Donnelly's map was built
     cmd->add_option("height", opt->height, "height map image (first channel, clamped to [0, 1])")->required();
     cmd->add_option("-o,--output", opt->output, "EXR to write")->capture_default_str()
@@ -57,11 +59,12 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
     cmd->add_option("--slices", opt->slices, "D: voxels across the relief's depth")
         ->capture_default_str()
         ->check(finite_in(1, 256));
-    if (k == "refinedmap") {
+    if (k == "refinedmap" || k == "relaxedconemap")
       cmd->add_option("--min-elevation", opt->refined.min_elevation_deg,
                       "lowest admissible view elevation, degrees, in the map's space (texels across, slices down)")
           ->capture_default_str()
           ->check(finite_in(0.1, 89.0));
+    if (k == "refinedmap") {
       cmd->add_option("--azimuths", opt->refined.azimuths, "directions around")->capture_default_str()->check(
           finite_in(1, 256));
       cmd->add_option("--elevations", opt->refined.elevations, "elevations below the vertical")
@@ -74,10 +77,10 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
           ->capture_default_str()
           ->check(finite_in(0.0, 64.0));
     }
-    if (k == "conemap")
+    if (cones)
       cmd->add_option("--levels", opt->levels, "height levels the apexes round up to (default 4·slices)")
           ->check(finite_in(1, 4096));
-    runs.push_back({cmd, [opt, k]() {
+    runs.push_back({cmd, [opt, k, cones]() {
                       Progress progress("precompute " + k);
                       progress.phase("loading the height map");
                       require_output("--output", opt->output);
@@ -86,7 +89,7 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
                       core::check_height_map(map, opt->height, "");  // what a scene accepts of its height map
                       const core::HeightField f = core::height_field(map, opt->height, "");
                       const uint64_t volume = uint64_t(f.width) * uint64_t(f.height) * uint64_t(opt->slices) * 4;
-                      core::MemoryBudget::process().take(k == "conemap" ? volume / uint64_t(opt->slices) * 4
+                      core::MemoryBudget::process().take(cones ? volume / uint64_t(opt->slices) * 4
                                                          : volume * (k == "refinedmap" ? 2 : 1),
                                                          opt->height, "--slices");
                       progress.phase("building the " + k);
@@ -96,8 +99,11 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
                         params["shadetlm:version"] = core::kVersion;
                         params["shadetlm:height"] = opt->height;
                       };
-                      if (k == "conemap") {
-                        core::ConeMap m = core::cone_map(f, opt->slices, opt->levels > 0 ? opt->levels : 4 * opt->slices);
+                      if (cones) {
+                        const int levels = opt->levels > 0 ? opt->levels : 4 * opt->slices;
+                        core::ConeMap m = k == "conemap" ? core::cone_map(f, opt->slices, levels)
+                                                         : core::relaxed_cone_map(f, opt->slices, levels,
+                                                                                  opt->refined.min_elevation_deg);
                         seconds = seconds_since(start);
                         stamp(m.params);
                         progress.phase("writing");
@@ -158,7 +164,7 @@ std::vector<Method> methods_to_compare(const core::ParallaxSettings& base, const
   std::vector<Method> methods;
   auto with = [&](const std::string& name, core::ParallaxMethod m, core::DistanceMap map = core::DistanceMap::Refined) {
     core::ParallaxSettings s = base;
-    s.method = m, s.map = map;
+    s.method = m, s.map = map, s.cones = core::ConeKind::Classic;
     s.map_file.clear();  // each method's own map, built
     if (map == core::DistanceMap::Donnelly && m == core::ParallaxMethod::Distance) s.early_exit = false;  // as published
     methods.push_back({name, s});
@@ -177,6 +183,8 @@ std::vector<Method> methods_to_compare(const core::ParallaxSettings& base, const
     methods.back().s.margin = margin;
   }
   with("cone", core::ParallaxMethod::Cone);
+  with("relaxed cone", core::ParallaxMethod::Cone);
+  methods.back().s.cones = core::ConeKind::Relaxed;
   return methods;
 }
 

@@ -348,6 +348,13 @@ MapKey map_key(const std::string& kind, const HeightField& f, int slices, const 
   return k;
 }
 
+MapKey relaxed_cone_key(const HeightField& f, int slices, int levels, double min_elevation_deg) {
+  MapKey k = map_key("relaxed-cone", f, slices, nullptr, levels);
+  k["shadetlm:min_elevation_deg"] = fmt(min_elevation_deg);
+  k["shadetlm:reach"] = std::to_string(kRelaxedConeReach);
+  return k;
+}
+
 void check_map_key(const std::map<std::string, std::string>& params, const MapKey& key, int width, int height,
                    const HeightField& f, const std::string& file) {
   if (width != f.width || height != f.height)

@@ -210,14 +210,28 @@ struct ConeMap {
 };
 ConeMap cone_map(const HeightField& f, int slices, int levels);
 
+// A safe relaxed cone map (docs/parallax.md): the classic map's apexes, and per cell the
+// widest ratio such that the cone holds no cell higher than the apex that descends, in a
+// direction a ray can take from the cell to it, more steeply than tan(min_elevation_deg)
+// (slices per texel). A ray at or above that elevation then enters the relief inside
+// the cone at most once and never leaves it again, so the tracer may step into the
+// relief and search back on the sign of z − D·h. The cone reaches at most
+// kRelaxedConeReach texels from its footprint (which bounds the generator's search:
+// O(cells × reach²) at worst, far less where cones are narrow). Rays below the bound are
+// not covered, as for the refined map.
+constexpr int kRelaxedConeReach = 64;
+ConeMap relaxed_cone_map(const HeightField& f, int slices, int levels, double min_elevation_deg);
+
 // What identifies a map, written into it by its builder as shadetlm:* parameters: its
-// kind ("box-gap", "donnelly", "refined", "cone"), slices, the height field's checksum, and the
+// kind ("box-gap", "donnelly", "refined", "cone", "relaxed-cone"), slices, the height field's checksum, and the
 // builder's own parameters (refined: the elevation bound, directions, rays and margin;
 // cone: the levels). A map read back for a scene is checked against the scene's key,
 // and a map cache files maps under it.
 using MapKey = std::map<std::string, std::string>;
 MapKey map_key(const std::string& kind, const HeightField& f, int slices, const RefinedParams* refined = nullptr,
                int levels = 0);
+// The relaxed cone map's key: map_key("relaxed-cone", …, levels) with its elevation bound and reach.
+MapKey relaxed_cone_key(const HeightField& f, int slices, int levels, double min_elevation_deg);
 // The first parameter of `key` that `params` lacks or holds another value of, as an
 // InputError naming `file` and the parameter; also the map's size against the field's.
 void check_map_key(const std::map<std::string, std::string>& params, const MapKey& key, int width, int height,

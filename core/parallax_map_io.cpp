@@ -86,7 +86,7 @@ void write_cone_map(const std::string& path, const ConeMap& map) {
 
 ConeMap read_cone_map(const std::string& path) {
   const Frame f = read_exr(path);
-  check_kind(f, path, {"cone"});
+  check_kind(f, path, {"cone", "relaxed-cone"});
   ConeMap m;
   m.width = f.width, m.height = f.height;
   m.slices = attribute_int(f, path, "shadetlm:slices");

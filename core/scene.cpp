@@ -377,6 +377,9 @@ void read_parallax(JsonReader pr, ParallaxSettings& ps) {
   for (DistanceMap dm : {DistanceMap::Refined, DistanceMap::BoxGap, DistanceMap::Donnelly})
     if (map == to_string(dm)) ps.map = dm;
   if (pr.has("map") && ps.method != ParallaxMethod::Distance) pr.fail("map", "only the distance method reads it");
+  const std::string cones = pr.choice("cones", std::string(to_string(ps.cones)), {"classic", "relaxed"});
+  ps.cones = cones == "relaxed" ? ConeKind::Relaxed : ConeKind::Classic;
+  if (pr.has("cones") && ps.method != ParallaxMethod::Cone) pr.fail("cones", "only the cone method reads it");
   ps.steps = pr.integer("steps", ps.steps, 1, 4096);
   if (pr.has("steps") && !(ps.method == ParallaxMethod::Distance && ps.map == DistanceMap::Donnelly))
     pr.fail("steps", "only the distance method on Donnelly's map reads it");

@@ -72,9 +72,14 @@ const char* to_string(ParallaxMethod m);
 // Euclidean map traced as published (a fixed count of trilinear sphere steps).
 enum class DistanceMap { Refined, BoxGap, Donnelly };
 const char* to_string(DistanceMap m);
+// The cone method's map (docs/parallax.md): classic cones, free of relief, or relaxed
+// ones, safe for rays at or above min_elevation_deg, that a step may end inside.
+enum class ConeKind { Classic, Relaxed };
+const char* to_string(ConeKind k);
 struct ParallaxSettings {
   ParallaxMethod method = ParallaxMethod::Distance;
   DistanceMap map = DistanceMap::Refined;  // distance
+  ConeKind cones = ConeKind::Classic;      // cone
   int steps = 16;            // distance on Donnelly's map: the fixed count of sphere steps
   double depth = 0.05;       // the relief's depth in uv units (≤ 0: flat, uv unchanged)
   int slices = 16;           // D: the distance and cone maps' depth in voxels
@@ -82,7 +87,7 @@ struct ParallaxSettings {
   bool early_exit = true;    // false: a fixed-length loop, every pixel pays the full count
   int layers_min = 8, layers_max = 32;  // steep, pom, relief: layers facing / grazing
   int binary_steps = 6;      // relief
-  double min_elevation_deg = 10;  // refined map: admissible directions (tracer space)
+  double min_elevation_deg = 10;  // refined map, relaxed cones: admissible directions (tracer space)
   double margin = 0;              // refined map: voxels taken off (safety)
   // A map written by `shadetlm precompute` (distance, refined or cone) read instead of
   // building one; checked against these settings and the height map. Empty: built.

@@ -53,6 +53,8 @@ const char* to_string(DistanceMap m) {
   return "?";
 }
 
+const char* to_string(ConeKind k) { return k == ConeKind::Relaxed ? "relaxed" : "classic"; }
+
 // ---------------------------------------------------------------- camera
 
 glm::dvec3 Camera::forward() const { return glm::normalize(target - position); }

@@ -131,7 +131,7 @@ for path in bump-classic bump-tangent bump-square bump-object; do
 done
 
 # Parallax maps: written with their parameters in the header; bad input exits 2, no file.
-for kind in boxgapmap distancemap donnellymap refinedmap conemap; do  # distancemap: boxgapmap's old name
+for kind in boxgapmap distancemap donnellymap refinedmap conemap relaxedconemap; do  # distancemap: boxgapmap's old name
   check "precompute-$kind" 0 "$bin" precompute $kind "$tmp/h64.png" -o "$tmp/px/$kind.exr" --slices 8
   expect_output "precompute-$kind" "8 slices"
   check "precompute-$kind-missing" 2 "$bin" precompute $kind "$tmp/none.png" -o "$tmp/px/none-$kind.exr"
@@ -177,6 +177,18 @@ check px-donnelly-map-file 0 "$bin" render "${px[@]}" -o "$tmp/px/donnelly.exr" 
   --set "materials.carved.parallax.map_file=$tmp/px/donnellymap.exr" --set materials.carved.parallax.map=donnelly \
   --set materials.carved.parallax.slices=8 --set materials.carved.parallax.steps=24
 check px-donnelly-map-file-same 0 "$bin" compare "$tmp/px/donnelly.exr" "$tmp/px/donnelly-built.exr" --fail 0
+rc=(--set materials.carved.parallax.method=cone --set materials.carved.parallax.cones=relaxed
+    --set materials.carved.parallax.slices=8)
+check px-relaxed-built 0 "$bin" render "${px[@]}" "${rc[@]}" -o "$tmp/px/relaxed-built.exr"
+check px-relaxed-map-file 0 "$bin" render "${px[@]}" "${rc[@]}" -o "$tmp/px/relaxed.exr" \
+  --set "materials.carved.parallax.map_file=$tmp/px/relaxedconemap.exr"
+check px-relaxed-map-file-same 0 "$bin" compare "$tmp/px/relaxed.exr" "$tmp/px/relaxed-built.exr" --fail 0
+check px-relaxed-map-file-elevation 2 "$bin" render "${px[@]}" "${rc[@]}" -o "$tmp/px/bad.exr" \
+  --set "materials.carved.parallax.map_file=$tmp/px/relaxedconemap.exr" --set materials.carved.parallax.min_elevation_deg=20
+expect_output px-relaxed-map-file-elevation "shadetlm:min_elevation_deg"
+check px-relaxed-map-file-classic 2 "$bin" render "${px[@]}" "${rc[@]}" -o "$tmp/px/bad.exr" \
+  --set "materials.carved.parallax.map_file=$tmp/px/relaxedconemap.exr" --set materials.carved.parallax.cones=classic
+expect_output px-relaxed-map-file-classic "shadetlm:map"
 check px-steps-not-donnelly 2 "$bin" render "${px[@]}" -o "$tmp/px/bad.exr" --set materials.carved.parallax.steps=8
 expect_output px-steps-not-donnelly "steps"
 expect_no_file px-map-file-refused "$tmp/px/bad.exr"
@@ -196,6 +208,9 @@ check px-cache-same 0 "$bin" compare "$tmp/px/c2.exr" "$tmp/px/built.exr" --fail
 check px-cache-cone 0 "$bin" render "${px[@]}" -o "$tmp/px/c3.exr" --map-cache "$tmp/px/cache" \
   --set materials.carved.parallax.method=cone
 [[ $(ls "$tmp/px/cache" | wc -l) == 2 ]] && ((passes++)) || { echo "FAIL px-cache-cone: no second map"; ((failures++)); }
+check px-cache-relaxed 0 "$bin" render "${px[@]}" -o "$tmp/px/c4.exr" --map-cache "$tmp/px/cache" \
+  --set materials.carved.parallax.method=cone --set materials.carved.parallax.cones=relaxed
+[[ $(ls "$tmp/px/cache" | wc -l) == 3 ]] && ((passes++)) || { echo "FAIL px-cache-relaxed: no third map"; ((failures++)); }
 
 # A mesh through assimp, from the scenes folder.
 check mesh 0 "$bin" reference "$src/scenes/knot.json" -o "$tmp/knot.exr" --set camera.resolution=[96,64]

@@ -477,6 +477,8 @@ px depth-huge depth '{"depth": 1e308}'
 px early-exit-string early_exit '{"early_exit": "no"}'
 px map-on-cone map '{"method": "cone", "map": "refined"}'
 px map-value map '{"map": "cone"}'
+px cones-on-distance cones '{"method": "distance", "cones": "relaxed"}'
+px cones-value cones '{"method": "cone", "cones": "loose"}'
 px unknown speed '{"speed": 2}'
 # Objects.
 bad shape-cylinder "objects.0.shape" 'objects.0.shape="cylinder"'
@@ -754,7 +756,7 @@ tex nanh.json nan-height.exr '{"path": "bump-classic", "height_map": "t"}'
 hostile -a "nanh.json: " height-map-nan "nan-height.exr" render nanh.json
 tex nanpx.json nan-height.exr '{"path": "parallax", "height_map": "t"}'
 hostile -a "nanpx.json: " parallax-height-nan "nan-height.exr" render nanpx.json
-for map in normalmap distancemap refinedmap conemap; do
+for map in normalmap distancemap refinedmap conemap relaxedconemap; do
   hostile "precompute-$map-nan" "nan-height.exr" S precompute $map nan-height.exr -o out.exr
   hostile "precompute-$map-minus-inf" "neg-inf-height.exr" S precompute $map neg-inf-height.exr -o out.exr
 done
@@ -790,6 +792,7 @@ opt --k "$floats 0" S precompute normalmap h16.png -o out.exr
 opt --slices "$ints 0" S precompute distancemap h16.png -o out.exr
 opt --slices "$ints" S precompute conemap h16.png -o out.exr
 opt --levels "$ints 0" S precompute conemap h16.png -o out.exr
+opt --min-elevation "$floats 0" S precompute relaxedconemap h16.png -o out.exr
 opt --slices "$ints" S precompute refinedmap h16.png -o out.exr
 opt --min-elevation "$floats 0" S precompute refinedmap h16.png -o out.exr
 opt --margin "$floats -1" S precompute refinedmap h16.png -o out.exr

@@ -190,15 +190,18 @@ TEST_CASE("the refined map is never below the box-gap map, and reaches further s
 }
 
 TEST_CASE("safe maps never pass the exact hit, the refined map by at most its documented tolerance", "[parallax]") {
-  // docs/parallax.md: Donnelly's map and the cone map are safe by construction (gate:
-  // 1e-3 voxel, float rounding); the refined map is safe for the rays it sampled, and
+  // docs/parallax.md: the box-gap map and the cone maps (classic, and relaxed for rays
+  // inside their elevation bound) are safe by construction (gate: 1e-3 voxel, float
+  // rounding); the refined map is safe for the rays it sampled, and
   // within 1 voxel for the others inside its admissible directions.
   for (const core::Texture& map : {steps_map(), noise_map()}) {
-    for (auto [method, map_kind, tolerance] :
-         {std::tuple{core::ParallaxMethod::Distance, core::DistanceMap::BoxGap, 1e-3},
-          std::tuple{core::ParallaxMethod::Cone, core::DistanceMap::Refined, 1e-3},
-          std::tuple{core::ParallaxMethod::Distance, core::DistanceMap::Refined, 1.0}}) {
-      const core::ParallaxSettings s = settings(method, map_kind);
+    for (auto [method, map_kind, cones, tolerance] :
+         {std::tuple{core::ParallaxMethod::Distance, core::DistanceMap::BoxGap, core::ConeKind::Classic, 1e-3},
+          std::tuple{core::ParallaxMethod::Cone, core::DistanceMap::Refined, core::ConeKind::Classic, 1e-3},
+          std::tuple{core::ParallaxMethod::Cone, core::DistanceMap::Refined, core::ConeKind::Relaxed, 1e-3},
+          std::tuple{core::ParallaxMethod::Distance, core::DistanceMap::Refined, core::ConeKind::Classic, 1.0}}) {
+      core::ParallaxSettings s = settings(method, map_kind);
+      s.cones = cones;
       const bool refined = method == core::ParallaxMethod::Distance && map_kind == core::DistanceMap::Refined;
       const modules::ParallaxMaps maps = modules::build_parallax_maps(map, s, "map");
       for (double elevation : {60.0, 30.0, 15.0, 8.0}) {  // 8°: 10.3° in the tracer's space, inside the bound
@@ -210,11 +213,166 @@ TEST_CASE("safe maps never pass the exact hit, the refined map by at most its do
           const auto exact = reference::parallax_hit(map, e, v.d, s.depth);
           worst = std::max(worst, past_hit(map, t, e, v, s.depth, s.slices, exact));
         }
-        INFO(core::to_string(method) << (refined ? " refined" : "") << " at " << elevation << "°");
+        INFO(core::to_string(method) << (refined ? " refined" : "") << " " << core::to_string(cones) << " at "
+                                     << elevation << "°");
         CHECK(worst <= tolerance);
       }
     }
   }
+}
+
+TEST_CASE("relaxed cones keep the classic apexes, are never narrower, and wider on many cells", "[parallax]") {
+  // Wider on most cells of the steps (flat plateaus); on the noise map nearly every cell
+  // descends more steeply than tan 10° somewhere, so only cells whose higher surroundings
+  // all rise away from them widen (10 % measured).
+  for (auto [map, share] : {std::pair{steps_map(), 0.5}, std::pair{noise_map(), 0.05}}) {
+    const core::HeightField f = core::height_field(map, "map", "");
+    const core::ConeMap classic = core::cone_map(f, 16, 64), relaxed = core::relaxed_cone_map(f, 16, 64, 10);
+    size_t wider = 0;
+    for (size_t c = 0; c < classic.ratio.size(); ++c) {
+      REQUIRE(relaxed.apex[c] == classic.apex[c]);
+      // The classic ratio's cap is the map's size, the relaxed one's its reach: compare below both.
+      const float cap = std::min(classic.ratio[c], float(core::kRelaxedConeReach) / 16);
+      REQUIRE(relaxed.ratio[c] >= cap * (1 - 1e-5f));
+      wider += relaxed.ratio[c] > classic.ratio[c] * 1.01f;
+    }
+    INFO(wider << " of " << classic.ratio.size() << " cells wider");
+    CHECK(double(wider) > share * double(classic.ratio.size()));
+  }
+}
+
+// Along one step of the cone of cell (i, j) from p along unit d, sampled at `samples`
+// points: whether it went under the relief, and the largest rise of g = z − D·h after
+// that. A safe relaxed cone keeps the rise at 0: the step never leaves the relief it
+// entered, and g never grows under it.
+struct StepCheck {
+  bool entered = false;
+  double rise = 0;
+};
+StepCheck check_step(const core::HeightField& f, const core::ConeMap& cones, int i, int j, glm::dvec3 p, glm::dvec3 d,
+                     int samples) {
+  const size_t cell = size_t(j) * size_t(f.width) + size_t(i);
+  const double D = cones.slices, apex = cones.apex[cell], ratio = cones.ratio[cell];
+  const double across = std::hypot(d.x, d.y), t = ratio > 0 ? (p.z - apex) / (-d.z + across / ratio) : 0;
+  StepCheck r;
+  double lowest = 1e30;
+  for (int n = 0; n <= samples; ++n) {
+    const glm::dvec3 q = p + d * (t * n / samples);
+    const double g = q.z - D * core::bilinear_height<double>(f, q.x, q.y);
+    lowest = std::min(lowest, g);
+    r.entered = r.entered || lowest <= 0;
+    if (r.entered) r.rise = std::max(r.rise, g - lowest);
+  }
+  return r;
+}
+
+core::Texture smooth_map() {  // the smooth bump of scenes/parallax/bump.json, at 64²
+  core::ProceduralParams p;
+  p.size = {64, 64}, p.cells = {3, 3}, p.octaves = 1, p.seed = 4;
+  return core::make_gradient_noise(p);
+}
+
+TEST_CASE("a step inside a relaxed cone enters the relief at most once and never leaves it", "[parallax]") {
+  // docs/parallax.md, "Relaxed cones, made safe": for rays at or above the elevation
+  // bound from any point of the cell's column over its apex. Each step is aimed at a
+  // random point of the relief inside the cone (where there is one), so that it goes
+  // in; 20 000 tries per map, each step sampled at 1 500 points. The same steps in cones
+  // 1.5× wider come out of the relief again on the smooth map: the check can tell.
+  constexpr double kBound = 10, D = 16;
+  double worst_wide = 0;
+  for (const core::Texture& map : {steps_map(), noise_map(), smooth_map()}) {
+    const core::HeightField f = core::height_field(map, "map", "");
+    const core::ConeMap relaxed = core::relaxed_cone_map(f, int(D), 64, kBound);
+    core::ConeMap wide = relaxed;
+    for (float& r : wide.ratio) r *= 1.5f;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> unit(0, 1);
+    double worst = 0;
+    int entered = 0, entered_wide = 0;
+    for (int n = 0; n < 20000; ++n) {
+      const int i = int(unit(rng) * f.width) % f.width, j = int(unit(rng) * f.height) % f.height;
+      const size_t cell = size_t(j) * size_t(f.width) + size_t(i);
+      const double apex = relaxed.apex[cell], ratio = 1.5 * relaxed.ratio[cell];
+      const glm::dvec3 p(i + unit(rng), j + unit(rng), apex + unit(rng) * (D - apex));
+      // A relief point q inside the wider cone: over a point at gap g from the cell, at or
+      // over apex + g / ratio (tries at most 20).
+      glm::dvec3 q(0);
+      for (int t = 0; t < 20 && q.z == 0; ++t) {
+        const double r = std::min(64.0, ratio * (D - apex)) * unit(rng), a = unit(rng) * 2 * 3.14159265358979;
+        const double qx = p.x + r * std::cos(a), qy = p.y + r * std::sin(a);
+        const double gx = std::max({0.0, i - qx, qx - (i + 1)}), gy = std::max({0.0, j - qy, qy - (j + 1)});
+        const double h = D * core::bilinear_height<double>(f, qx, qy);
+        if (h >= apex + std::hypot(gx, gy) / ratio && h < p.z) q = glm::dvec3(qx, qy, h);
+      }
+      if (q.z == 0) continue;
+      const glm::dvec3 d = glm::normalize(q - p);
+      if (!(d.z <= -std::sin(glm::radians(kBound)))) continue;  // below the bound
+      const StepCheck in = check_step(f, relaxed, i, j, p, d, 1500), out = check_step(f, wide, i, j, p, d, 1500);
+      worst = std::max(worst, in.rise), worst_wide = std::max(worst_wide, out.rise);
+      entered += in.entered, entered_wide += out.entered;
+    }
+    INFO("steps into the relief: " << entered << ", largest rise after " << worst << " slices; 1.5x wider: "
+                                   << entered_wide);
+    CHECK(worst <= 1e-9);
+    if (map.texels != noise_map().texels) CHECK(entered > 20);  // the noise map's cones hold little relief
+  }
+  CHECK(worst_wide > 0.01);
+}
+
+// Against the generator's rule, by brute force apart from its code: the cells inside the
+// cones of `cones` (box top above apex + gap / ratio, ratios × `scale`), and how many
+// rays from 5 × 5 points of the cone's cell to 5 × 5 points of such a cell descend
+// through the latter's patch, along the ray, more steeply than tan_min.
+std::pair<size_t, size_t> cells_a_ray_could_leave(const core::HeightField& f, const core::ConeMap& cones,
+                                                  double scale, double tan_min) {
+  const double D = cones.slices;
+  const std::vector<float> top = core::cell_tops(f);
+  size_t inside = 0, violations = 0;
+  for (int j = 0; j < f.height; ++j)
+    for (int i = 0; i < f.width; ++i) {
+      const size_t c = size_t(j) * size_t(f.width) + size_t(i);
+      const double apex = cones.apex[c], ratio = scale * cones.ratio[c];
+      const int reach = int(std::ceil(std::min(96.0, ratio * (D - apex)))) + 1;
+      for (int dy = -reach; dy <= reach; ++dy)
+        for (int dx = -reach; dx <= reach; ++dx) {
+          const int ei = i + dx, ej = j + dy;
+          const double gap = std::hypot(std::max(0, std::abs(dx) - 1), std::max(0, std::abs(dy) - 1));
+          const double rise = D * top[size_t((ej % f.height + f.height) % f.height) * size_t(f.width) +
+                                      size_t((ei % f.width + f.width) % f.width)] - apex;
+          if ((!dx && !dy) || !(rise > 0 && gap < ratio * rise)) continue;  // not inside the cone
+          ++inside;
+          const double h00 = f.at(ei, ej), h10 = f.at(ei + 1, ej), h01 = f.at(ei, ej + 1), h11 = f.at(ei + 1, ej + 1);
+          for (int a = 0; a <= 4; ++a)
+            for (int b = 0; b <= 4; ++b) {
+              const double u = a / 4.0, v = b / 4.0;  // the point of e, and the patch's gradient there
+              const glm::dvec2 grad(D * ((1 - v) * (h10 - h00) + v * (h11 - h01)),
+                                    D * ((1 - u) * (h01 - h00) + u * (h11 - h10)));
+              for (int s = 0; s <= 4; ++s)
+                for (int t = 0; t <= 4; ++t) {
+                  const glm::dvec2 w(ei + u - (i + s / 4.0), ej + v - (j + t / 4.0));
+                  if (glm::length(w) > 0) violations += -glm::dot(grad, glm::normalize(w)) > tan_min + 1e-9;
+                }
+            }
+        }
+    }
+  return {inside, violations};
+}
+
+TEST_CASE("no relaxed cone holds a cell that a ray from its own cell could leave the relief through", "[parallax]") {
+  // The rule the safety rests on (docs/parallax.md), checked apart from the generator's
+  // code; the same check on cones 1.5× wider finds such cells, so it can tell.
+  const double tan_min = std::tan(glm::radians(10.0));
+  size_t wide_violations = 0;
+  for (const core::Texture& map : {steps_map(32), noise_map(32), smooth_map()}) {
+    const core::HeightField f = core::height_field(map, "map", "");
+    const core::ConeMap relaxed = core::relaxed_cone_map(f, 16, 64, 10);
+    const auto [inside, violations] = cells_a_ray_could_leave(f, relaxed, 1, tan_min);
+    INFO(inside << " cells inside cones");
+    CHECK(inside > 0);
+    CHECK(violations == 0);
+    wide_violations += cells_a_ray_could_leave(f, relaxed, 1.5, tan_min).second;
+  }
+  CHECK(wide_violations > 0);
 }
 
 TEST_CASE("the refined map needs fewer iterations than the box-gap map on the mean, the same tracer", "[parallax]") {
@@ -279,20 +437,23 @@ TEST_CASE("bad height maps and views give a documented result, never NaN", "[par
       map.height = 4;
       map.texels.resize(16 * 4);
     }
-    for (auto [method, map_kind] : {std::pair{core::ParallaxMethod::Offset, core::DistanceMap::Refined},
-                                    {core::ParallaxMethod::Steep, core::DistanceMap::Refined},
-                                    {core::ParallaxMethod::Pom, core::DistanceMap::Refined},
-                                    {core::ParallaxMethod::Relief, core::DistanceMap::Refined},
-                                    {core::ParallaxMethod::Distance, core::DistanceMap::Refined},
-                                    {core::ParallaxMethod::Distance, core::DistanceMap::Donnelly},
-                                    {core::ParallaxMethod::Cone, core::DistanceMap::Refined}})
+    using K = core::ConeKind;
+    for (auto [method, map_kind, cones] : {std::tuple{core::ParallaxMethod::Offset, core::DistanceMap::Refined, K::Classic},
+                                           {core::ParallaxMethod::Steep, core::DistanceMap::Refined, K::Classic},
+                                           {core::ParallaxMethod::Pom, core::DistanceMap::Refined, K::Classic},
+                                           {core::ParallaxMethod::Relief, core::DistanceMap::Refined, K::Classic},
+                                           {core::ParallaxMethod::Distance, core::DistanceMap::Refined, K::Classic},
+                                           {core::ParallaxMethod::Distance, core::DistanceMap::Donnelly, K::Classic},
+                                           {core::ParallaxMethod::Cone, core::DistanceMap::Refined, K::Classic},
+                                           {core::ParallaxMethod::Cone, core::DistanceMap::Refined, K::Relaxed}})
       for (double depth : {0.05, 0.0, -0.1}) {
         auto s = settings(method, map_kind);
-        s.depth = depth;
+        s.depth = depth, s.cones = cones;
         const auto maps = modules::build_parallax_maps(map, s, "map");
         for (const glm::dvec3& d : {glm::dvec3(0.6, 0.2, -0.5), glm::dvec3(0.8, 0.6, 0.0), glm::dvec3(0, 0, -1)}) {
           const auto t = modules::trace_parallax(s, maps, 0.7f, 0.4f, float(d.x), float(d.y), float(d.z));
-          INFO(c.name << ", " << core::to_string(method) << " " << core::to_string(map_kind) << ", depth " << depth << ", d.z " << d.z);
+          INFO(c.name << ", " << core::to_string(method) << " " << core::to_string(map_kind) << " "
+                      << core::to_string(cones) << ", depth " << depth << ", d.z " << d.z);
           REQUIRE(std::isfinite(t.x));
           REQUIRE(std::isfinite(t.y));
           if (!(depth > 0) || d.z == 0) {  // flat, or a ray along the surface: the entry point
@@ -405,11 +566,42 @@ TEST_CASE("a precomputed map is read instead of built, and refused for another s
   CHECK_THROWS_AS(modules::build_parallax_maps(height, truncated, "scene.json"), core::InputError);
 }
 
+TEST_CASE("a relaxed cone map file is read for relaxed cones only, at its elevation bound", "[parallax]") {
+  const auto dir = test::temp_dir("parallax-relaxed-files");
+  const core::Texture height = noise_map(16);
+  core::ParallaxSettings s = settings(core::ParallaxMethod::Cone);
+  s.cones = core::ConeKind::Relaxed, s.slices = 8;
+  const modules::ParallaxMaps built = modules::build_parallax_maps(height, s, "scene.json");
+  const std::string file = (dir / "relaxed.exr").string(), classic = (dir / "classic.exr").string();
+  core::write_cone_map(file, built.cone);
+  core::ParallaxSettings read = s;
+  read.map_file = file;
+  const modules::ParallaxMaps back = modules::build_parallax_maps(height, read, "scene.json");
+  CHECK(back.loaded);
+  CHECK(back.cone.ratio == built.cone.ratio);
+  core::ParallaxSettings other = read;
+  other.min_elevation_deg = 20;
+  CHECK(map_refusal(height, other) == "shadetlm:min_elevation_deg");
+  other = read;
+  other.cones = core::ConeKind::Classic;  // classic cones asked, relaxed ones given
+  CHECK(map_refusal(height, other) == "shadetlm:map");
+  core::ParallaxSettings c = settings(core::ParallaxMethod::Cone);
+  c.slices = 8;
+  core::write_cone_map(classic, modules::build_parallax_maps(height, c, "scene.json").cone);
+  other = read;
+  other.map_file = classic;  // and the other way round
+  CHECK(map_refusal(height, other) == "shadetlm:map");
+}
+
 TEST_CASE("without early exit every pixel pays the full loop, for the same result", "[parallax]") {
   const core::Texture map = noise_map();
   const View v = view(30, 8);
-  for (auto method : {core::ParallaxMethod::Steep, core::ParallaxMethod::Distance, core::ParallaxMethod::Cone}) {
+  for (auto [method, cones] : {std::pair{core::ParallaxMethod::Steep, core::ConeKind::Classic},
+                               {core::ParallaxMethod::Distance, core::ConeKind::Classic},
+                               {core::ParallaxMethod::Cone, core::ConeKind::Classic},
+                               {core::ParallaxMethod::Cone, core::ConeKind::Relaxed}}) {
     auto s = settings(method);
+    s.cones = cones;
     s.layers_min = s.layers_max = 20;
     s.max_iterations = 64;
     const auto maps = modules::build_parallax_maps(map, s, "map");
@@ -419,7 +611,7 @@ TEST_CASE("without early exit every pixel pays the full loop, for the same resul
       const float x = float(e.x * 64 - 0.5), y = float((1 - e.y) * 64 - 0.5);
       const auto a = modules::trace_parallax(s, maps, x, y, float(v.d.x), float(v.d.y), float(v.d.z));
       const auto b = modules::trace_parallax(fixed, maps, x, y, float(v.d.x), float(v.d.y), float(v.d.z));
-      INFO(core::to_string(method));
+      INFO(core::to_string(method) << " " << core::to_string(cones));
       CHECK(a.x == b.x);
       CHECK(a.y == b.y);
       CHECK(a.iterations < b.iterations);

@@ -8,7 +8,9 @@
 namespace shadetlm::modules {
 
 core::MapKey parallax_map_key(const core::HeightField& f, const core::ParallaxSettings& s) {
-  if (s.method == core::ParallaxMethod::Cone) return core::map_key("cone", f, s.slices, nullptr, 4 * s.slices);
+  if (s.method == core::ParallaxMethod::Cone)
+    return s.cones == core::ConeKind::Relaxed ? core::relaxed_cone_key(f, s.slices, 4 * s.slices, s.min_elevation_deg)
+                                              : core::map_key("cone", f, s.slices, nullptr, 4 * s.slices);
   if (s.map != core::DistanceMap::Refined) return core::map_key(core::to_string(s.map), f, s.slices);
   core::RefinedParams p;
   p.min_elevation_deg = s.min_elevation_deg;
@@ -43,6 +45,8 @@ ParallaxMaps build_parallax_maps(const core::Texture& height_map, const core::Pa
       p.margin = s.margin;
       m.volume = core::refined_map(m.field, m.volume, p);
     }
+  } else if (cone && s.cones == core::ConeKind::Relaxed) {
+    m.cone = core::relaxed_cone_map(m.field, s.slices, 4 * s.slices, s.min_elevation_deg);
   } else if (cone) {
     m.cone = core::cone_map(m.field, s.slices, 4 * s.slices);
   }
@@ -270,29 +274,87 @@ bool trace_donnelly(const core::ParallaxSettings& s, const ParallaxMaps& m, cons
   return true;
 }
 
+// The cone map's cell under (x, y), read (one fetch, one iteration): its apex and ratio.
+template <class T>
+void read_cone(const ParallaxMaps& m, const Ray<T>& ray, T x, T y, T& apex, T& ratio, ParallaxTrace& r, Ops* ops) {
+  const core::HeightField& f = m.field;
+  int i = int(float(floor_op(x))) % f.width, j = int(float(floor_op(y))) % f.height;
+  if (i < 0) i += f.width;
+  if (j < 0) j += f.height;
+  const size_t cell = size_t(j) * size_t(f.width) + size_t(i);
+  if (ray.reads) ray.reads->cone(i, j);
+  apex = T(m.cone.apex[cell]), ratio = T(m.cone.ratio[cell]);
+  ++r.iterations, ++r.fetches;
+  if (ops) *ops += kOpsCone;
+}
+
+// The step along the ray that stays inside the cone of the cell under p, which is
+// `above` slices over the apex: its horizontal run grows by `ratio` a slice down.
+template <class T>
+T cone_step(T above, T ratio, T down, T across) {
+  const T zero = T(0.0f);
+  return above > zero && ratio > zero ? above / (down + across / ratio) : zero;
+}
+
 // Cone stepping: from p over cell (i, j), the ray stays in the cone of the cell — free
 // of relief — until it has come down to apex + (distance from the footprint)/ratio; then
 // the exact cells. False if the ray overflowed.
 template <class T>
 bool trace_cones(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& x, T& y, T& z,
                  ParallaxTrace& r, Ops* ops) {
-  const core::HeightField& f = m.field;
-  const T zero = T(0.0f), across = sqrt_op(ray.dx * ray.dx + ray.dy * ray.dy), down = -ray.dz;
-  const T near = T(kParallaxNear);
+  const T across = sqrt_op(ray.dx * ray.dx + ray.dy * ray.dy), down = -ray.dz;
   while (r.iterations < s.max_iterations) {
     if (!finite(x) || !finite(y)) return false;
-    int i = int(float(floor_op(x))) % f.width, j = int(float(floor_op(y))) % f.height;
-    if (i < 0) i += f.width;
-    if (j < 0) j += f.height;
-    const size_t cell = size_t(j) * size_t(f.width) + size_t(i);
-    if (ray.reads) ray.reads->cone(i, j);
-    const T above = z - T(m.cone.apex[cell]), ratio = T(m.cone.ratio[cell]);
-    ++r.iterations, ++r.fetches;
-    if (ops) *ops += kOpsCone;
-    const T t = above > zero && ratio > zero ? above / (down + across / ratio) : zero;
-    if (t < near) break;
+    T apex, ratio;
+    read_cone(m, ray, x, y, apex, ratio, r, ops);
+    const T t = cone_step(z - apex, ratio, down, across);
+    if (t < T(kParallaxNear)) break;
     x += t * ray.dx, y += t * ray.dy, z += t * ray.dz;
     ++r.skips;
+  }
+  if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, ray.dx, ray.dy, ray.dz, r, ops, ray.reads);
+  return true;
+}
+
+// Relaxed cone stepping on a safe relaxed map (core::relaxed_cone_map): the same steps,
+// but a step may end under the relief, which it entered at most once. Where a step ends
+// at or under its new cell's apex, one height read tells: above, the exact cells go on
+// from there; under, the hit lies in the step, and bisections on the sign of z − D·h
+// (each a height read) narrow it to one texel across before the exact cells finish.
+template <class T>
+bool trace_relaxed_cones(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& x, T& y,
+                         T& z, ParallaxTrace& r, Ops* ops) {
+  const T across = sqrt_op(ray.dx * ray.dx + ray.dy * ray.dy), down = -ray.dz, half = T(0.5f);
+  T px = x, py = y, pz = z;  // where the last step began (above the relief)
+  bool stepped = false;
+  while (r.iterations < s.max_iterations) {
+    if (!finite(x) || !finite(y)) return false;
+    T apex, ratio;
+    read_cone(m, ray, x, y, apex, ratio, r, ops);
+    if (stepped && z <= apex && r.iterations < s.max_iterations) {  // at or under the box top: where?
+      const T h = ray.D * height_at(m.field, x, y, ray.reads);
+      ++r.iterations, r.fetches += 4;
+      if (ops) *ops += kOpsHeightRead;
+      if (z <= h) {  // under: the hit is in the step from p, search it
+        T run = (z - pz) / ray.dz * across;  // the bracket's length across, texels
+        while (run > T(1.0f) && r.iterations < s.max_iterations) {
+          const T mx = (px + x) * half, my = (py + y) * half, mz = (pz + z) * half;
+          const T mh = ray.D * height_at(m.field, mx, my, ray.reads);
+          ++r.iterations, r.fetches += 4;
+          if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 3};
+          if (mz <= mh) x = mx, y = my, z = mz;
+          else px = mx, py = my, pz = mz;
+          run = run * half;
+        }
+        x = px, y = py, z = pz;  // above the relief, the hit within a texel or so on
+        break;
+      }
+    }
+    const T t = cone_step(z - apex, ratio, down, across);
+    if (t < T(kParallaxNear)) break;
+    px = x, py = y, pz = z;
+    x += t * ray.dx, y += t * ray.dy, z += t * ray.dz;
+    ++r.skips, stepped = true;
   }
   if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, ray.dx, ray.dy, ray.dz, r, ops, ray.reads);
   return true;
@@ -317,6 +379,7 @@ ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, f
   const bool donnelly = distance && s.map == core::DistanceMap::Donnelly;
   const bool traced = donnelly ? trace_donnelly(s, m, ray, x, y, z, r, ops)
                       : distance ? trace_spheres(s, m, ray, x, y, z, r, ops)
+                      : cone && s.cones == core::ConeKind::Relaxed ? trace_relaxed_cones(s, m, ray, x, y, z, r, ops)
                       : cone   ? trace_cones(s, m, ray, x, y, z, r, ops)
                                : trace_layers(s, m, ray, x, y, z, r, ops);
   if (!traced) return r;  // overflowed (float16): counted; the entry kept
