@@ -68,8 +68,14 @@ Real cell_hit(const HeightField& f, int i, int j, Real px, Real py, Real pz, Rea
   const Real q1 = dz - slices * (B * dx + C * dy + E * (px * dy + py * dx));
   const Real q2 = -slices * E * dx * dy;
   Real best = -1;
+  // A root that rounding puts just outside [0, length] (a ray meeting the relief on the
+  // cell's border) is taken, clamped in: else neither this cell nor the next one may.
+  const Real slack = Real(64) * std::numeric_limits<Real>::epsilon() * (length + 1);
   auto take = [&](Real s) {
-    if (s >= 0 && s <= length && (best < 0 || s < best)) best = s;
+    if (s >= -slack && s <= length + slack) {
+      s = std::clamp(s, Real(0), length);
+      if (best < 0 || s < best) best = s;
+    }
   };
   if (std::abs(q2) * length < Real(1e-7) * (std::abs(q1) + std::abs(q0) + Real(1e-30))) {
     if (q1 < 0) take(-q0 / q1);  // (nearly) linear
