@@ -1,6 +1,5 @@
 #include "app/map_cache.hpp"
 
-#include <cstdio>
 #include <filesystem>
 #include <vector>
 
@@ -26,17 +25,14 @@ std::string builder() {
   return std::string(core::kVersion) + " " + std::to_string(size) + " " + std::to_string(time);
 }
 
-// "<kind>-<16 hex digits>.exr": FNV-1a over the key's names and values and the builder.
+// "<kind>-<16 hex digits>.exr": FNV-1a over the key's names and values and the builder,
+// each with its terminating NUL.
 std::string cache_name(const core::MapKey& key) {
-  uint64_t h = 14695981039346656037ull;
-  auto mix = [&h](const std::string& text) {
-    for (unsigned char c : text + '\0') h = (h ^ c) * 1099511628211ull;
-  };
+  core::Fnv1a h;
+  auto mix = [&h](const std::string& text) { h.mix(text.c_str(), text.size() + 1); };
   for (const auto& [name, value] : key) mix(name), mix(value);
   mix(builder());
-  char digits[17];
-  std::snprintf(digits, sizeof digits, "%016llx", static_cast<unsigned long long>(h));
-  return key.at("shadetlm:map") + "-" + digits + ".exr";
+  return key.at("shadetlm:map") + "-" + h.hex() + ".exr";
 }
 
 }  // namespace

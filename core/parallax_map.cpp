@@ -320,18 +320,23 @@ ConeMap cone_map(const HeightField& f, int slices, int levels) {
   return m;
 }
 
-std::string height_checksum(const HeightField& f) {
-  uint64_t h = 14695981039346656037ull;  // FNV-1a, 64 bits
-  auto mix = [&h](const void* data, size_t size) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < size; ++i) h = (h ^ bytes[i]) * 1099511628211ull;
-  };
-  const int32_t sizes[2] = {f.width, f.height};
-  mix(sizes, sizeof sizes);
-  mix(f.h.data(), f.h.size() * sizeof(float));
+void Fnv1a::mix(const void* data, size_t size) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  for (size_t i = 0; i < size; ++i) h_ = (h_ ^ bytes[i]) * 1099511628211ull;
+}
+
+std::string Fnv1a::hex() const {
   char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h_));
   return buf;
+}
+
+std::string height_checksum(const HeightField& f) {
+  Fnv1a h;
+  const int32_t sizes[2] = {f.width, f.height};
+  h.mix(sizes, sizeof sizes);
+  h.mix(f.h.data(), f.h.size() * sizeof(float));
+  return h.hex();
 }
 
 MapKey map_key(const std::string& kind, const HeightField& f, int slices, const RefinedParams* refined, int levels) {

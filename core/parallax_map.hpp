@@ -244,6 +244,16 @@ void check_map_key(const std::map<std::string, std::string>& params, const MapKe
                    const HeightField& f, const std::string& file);
 // A checksum of a height field's size and values (FNV-1a, 64 bits, 16 hex digits).
 std::string height_checksum(const HeightField& f);
+// FNV-1a, 64 bits, over the bytes mixed in; hex(): as 16 hex digits. Height checksums and
+// the map cache's file names.
+class Fnv1a {
+ public:
+  void mix(const void* data, size_t size);
+  std::string hex() const;
+
+ private:
+  uint64_t h_ = 14695981039346656037ull;
+};
 
 // ---- The io component (shadetlm::io, linked apart: file formats) from here on.
 // Maps as EXR: a volume's slices as channels "d.000" …, a cone map as "apex" and
