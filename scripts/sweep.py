@@ -116,9 +116,10 @@ def plan():
                     sets["pipeline.texture_fetch.filter"] = filt
                 runs.append(("texture", scene, sets))
     # The parallax tracers: the refined distance map (the default), the box-gap map,
-    # Donnelly's map as published, cone stepping, and the layered searches, each at three
-    # iteration caps.
+    # Donnelly's map as published, classic and relaxed cone stepping, and the layered
+    # searches, each at three iteration caps.
     tracers = [{}] + [{"parallax.method": "distance", "parallax.map": m} for m in ["box-gap", "donnelly"]] + [
+        {"parallax.method": "cone", "parallax.cones": "relaxed"}] + [
         {"parallax.method": m} for m in ["cone", "relief", "pom", "steep", "offset"]]
     for tracer in tracers:
         # Donnelly's tracer takes a fixed count of steps (parallax.steps), the others a cap.

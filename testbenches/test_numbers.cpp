@@ -99,15 +99,18 @@ TEST_CASE("float16 parallax tracer on rays that overflow it: the entry kept, nev
   for (int i = 0; i < 256; ++i) steps.texels[size_t(i)] = glm::vec4(((i % 16) / 4 + (i / 64)) % 2 ? 1.0f : 0.0f);
   NumberContext half(core::NumberFormat::parse("float16"));
   int kept = 0;
-  for (auto method : {core::ParallaxMethod::Relief, core::ParallaxMethod::Pom, core::ParallaxMethod::Cone,
-                      core::ParallaxMethod::Distance}) {
+  for (auto [method, cones] : {std::pair{core::ParallaxMethod::Relief, core::ConeKind::Classic},
+                               {core::ParallaxMethod::Pom, core::ConeKind::Classic},
+                               {core::ParallaxMethod::Cone, core::ConeKind::Classic},
+                               {core::ParallaxMethod::Cone, core::ConeKind::Relaxed},
+                               {core::ParallaxMethod::Distance, core::ConeKind::Classic}}) {
     core::ParallaxSettings s;
-    s.method = method;
+    s.method = method, s.cones = cones;
     s.depth = 0.1;
     s.layers_max = 64;
     const modules::ParallaxMaps maps = modules::build_parallax_maps(steps, s, "steps");
     for (float c : {-1.5e-7f, -5e-7f, -1e-4f, -0.5f}) {
-      INFO(int(method) << " c " << c);
+      INFO(int(method) << " " << core::to_string(cones) << " c " << c);
       const uint64_t overflows = half.events.overflows;
       const modules::ParallaxTrace t = modules::trace_parallax(s, maps, 3.3f, 5.1f, 0.7f, 0.3f, c, nullptr, &half);
       CHECK(std::isfinite(t.x));

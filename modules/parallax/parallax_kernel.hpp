@@ -11,7 +11,9 @@
 //   distance  sphere tracing on a distance map (parallax.map): the paper's refined map or
 //             the box-gap map it refines — the same tracer, only the map differs — or
 //             Donnelly's Euclidean map traced as published (s.steps trilinear steps)
-//   cone      cone stepping on a safe cone map
+//   cone      cone stepping on a safe cone map (parallax.cones): classic cones, free of
+//             relief, or relaxed ones, which a step may end inside (then bisections on
+//             the sign of z − D·h, before the exact cells)
 //
 // distance (refined, box-gap) and cone skip empty space, then walk the last cells with the exact per-cell
 // test (core::march_cells) — the same finish for both, so that their iteration counts
