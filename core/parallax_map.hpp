@@ -68,8 +68,10 @@ Real cell_hit(const HeightField& f, int i, int j, Real px, Real py, Real pz, Rea
   const Real q1 = dz - slices * (B * dx + C * dy + E * (px * dy + py * dx));
   const Real q2 = -slices * E * dx * dy;
   Real best = -1;
-  // A root that rounding puts just outside [0, length] (a ray meeting the relief on the
-  // cell's border) is taken, clamped in: else neither this cell nor the next one may.
+  // A root that rounding puts just outside [0, length] (a ray meeting or grazing the
+  // relief on the cell's border) is taken, clamped in: else this cell and the next may
+  // both miss it. The price: a ray that passes within |q′|·slack over the relief at the
+  // border, rounding's order, counts as touching it.
   const Real slack = Real(64) * std::numeric_limits<Real>::epsilon() * (length + 1);
   auto take = [&](Real s) {
     if (s >= -slack && s <= length + slack) {
@@ -223,15 +225,17 @@ ConeMap cone_map(const HeightField& f, int slices, int levels);
 // the cone at most once and never leaves it again, so the tracer may step into the
 // relief and search back on the sign of z − D·h. The cone reaches at most
 // kRelaxedConeReach texels from its footprint (which bounds the generator's search:
-// O(cells × reach²) at worst, far less where cones are narrow). Rays below the bound are
+// O(cells × reach²) at worst, far less where cones are narrow), unless the classic cone
+// is wider still: it is never narrower than the classic map's. Rays below the bound are
 // not covered, as for the refined map.
 constexpr int kRelaxedConeReach = 64;
 ConeMap relaxed_cone_map(const HeightField& f, int slices, int levels, double min_elevation_deg);
 
 // What identifies a map, written into it by its builder as shadetlm:* parameters: its
-// kind ("box-gap", "donnelly", "refined", "cone", "relaxed-cone"), slices, the height field's checksum, and the
-// builder's own parameters (refined: the elevation bound, directions, rays and margin;
-// cone: the levels). A map read back for a scene is checked against the scene's key,
+// kind ("box-gap", "donnelly", "refined", "cone", "relaxed-cone"), slices, the height
+// field's checksum, and the builder's own parameters (refined: the elevation bound,
+// directions, rays and margin; cone: the levels; relaxed cone: the levels, the elevation
+// bound and the reach). A map read back for a scene is checked against the scene's key,
 // and a map cache files maps under it.
 using MapKey = std::map<std::string, std::string>;
 MapKey map_key(const std::string& kind, const HeightField& f, int slices, const RefinedParams* refined = nullptr,

@@ -1,9 +1,9 @@
 // The safe relaxed cone map (docs/parallax.md, "Relaxed cones, made safe").
 //
 // Why it is safe, in short. Along a ray r(s) going down at elevation θ, let
-// g(s) = z(s) − D·h(x(s), y(s)), the height above the relief. Over one bilinear cell
-// g'(s) = −|v̂xy|·(tan θ + ∇h·ŵ), ŵ the ray's horizontal direction. So where the patch
-// descends along ŵ by at most tan θ, g never rises: a ray there can enter the relief
+// g(s) = z(s) − D·h(x(s), y(s)), the height above the relief in slices. Over one
+// bilinear cell g'(s) = −|v̂xy|·(tan θ + D·∇h·ŵ), ŵ the ray's horizontal direction. So
+// where the patch descends along ŵ by at most tan θ (slices per texel), g never rises: a ray there can enter the relief
 // but never come out of it. A ray that starts over cell c and is still inside c's cone
 // has ŵ among the directions from c's footprint to the footprint it is over. The
 // generator keeps out of the cone every cell (higher than the apex) that, in one of
@@ -102,15 +102,17 @@ ConeMap relaxed_cone_map(const HeightField& f, int slices, int levels, double mi
   for (int j = 0; j < H; ++j)
     for (int i = 0; i < W; ++i) steep[size_t(j) * W + i] = steep_sectors(f, i, j, D, tan_min);
   const std::vector<Offset> offsets = offsets_within(kRelaxedConeReach);
+  // A classic cone holds no box above its apex at all, so it is a safe relaxed cone too:
+  // where it is wider than the reach lets the search go, it is kept.
+  const ConeMap classic = cone_map(f, slices, levels);
   ConeMap m;
   m.width = W, m.height = H, m.slices = slices;
   m.apex.resize(top.size()), m.ratio.resize(top.size());
   for (int j = 0; j < H; ++j)
     for (int i = 0; i < W; ++i) {
       const size_t c = size_t(j) * W + i;
-      const int level = std::clamp(int(std::ceil(double(top[c]) * levels - 1e-9)), 0, levels);
-      const double apex = D * level / levels;
-      // The cone reaches at most kRelaxedConeReach texels out at the top of the volume.
+      const double apex = classic.apex[c];  // the classic map's: the box top rounded up to a level
+      // The search reaches kRelaxedConeReach texels out at the top of the volume.
       double ratio = kRelaxedConeReach / std::max(D - apex, D / levels);
       for (const Offset& o : offsets) {
         if (o.gap >= ratio * (D - apex)) break;  // no cell this far can narrow the cone
@@ -119,8 +121,10 @@ ConeMap relaxed_cone_map(const HeightField& f, int slices, int levels, double mi
         const double rise = D * top[e] - apex;
         if (rise > 0 && (steep[e] & o.heading)) ratio = std::min(ratio, o.gap / rise);
       }
-      m.apex[c] = float(apex);
-      m.ratio[c] = float(ratio * (1 - 1e-6));  // rounded inward: the float step never overreaches
+      m.apex[c] = classic.apex[c];
+      // Rounded inward: a cell that narrowed the cone (or touches the classic one) stays
+      // strictly outside it.
+      m.ratio[c] = float(std::max(ratio, double(classic.ratio[c])) * (1 - 1e-6));
     }
   m.params = relaxed_cone_key(f, slices, levels, min_elevation_deg);
   m.params.insert({{"shadetlm:units", "apex in slices, ratio in texels across per slice up"},

@@ -316,6 +316,25 @@ bool trace_cones(const core::ParallaxSettings& s, const ParallaxMaps& m, const R
   return true;
 }
 
+// Bisections on the sign of z − D·h (a height read each) between p, above the relief,
+// and q, at or under it, until the step is at most a texel across or the cap is reached.
+// On a relaxed cone's step the sign is + then −, so the first hit stays between them.
+template <class T>
+void bisect_step(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& px, T& py, T& pz, T& qx,
+                 T& qy, T& qz, ParallaxTrace& r, Ops* ops) {
+  const T half = T(0.5f), across = sqrt_op(ray.dx * ray.dx + ray.dy * ray.dy);
+  T run = (qz - pz) / ray.dz * across;  // the step's length across, texels
+  while (run > T(1.0f) && r.iterations < s.max_iterations) {
+    const T mx = (px + qx) * half, my = (py + qy) * half, mz = (pz + qz) * half;
+    const T mh = ray.D * height_at(m.field, mx, my, ray.reads);
+    ++r.iterations, r.fetches += 4;
+    if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 3};
+    if (mz <= mh) qx = mx, qy = my, qz = mz;
+    else px = mx, py = my, pz = mz;
+    run = run * half;
+  }
+}
+
 // Relaxed cone stepping on a safe relaxed map (core::relaxed_cone_map): the same steps,
 // but a step may end under the relief, which it entered at most once. Where a step ends
 // at or under its new cell's apex, one height read tells: above, the exact cells go on
@@ -324,38 +343,35 @@ bool trace_cones(const core::ParallaxSettings& s, const ParallaxMaps& m, const R
 template <class T>
 bool trace_relaxed_cones(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& x, T& y,
                          T& z, ParallaxTrace& r, Ops* ops) {
-  const T across = sqrt_op(ray.dx * ray.dx + ray.dy * ray.dy), down = -ray.dz, half = T(0.5f);
-  T px = x, py = y, pz = z;  // where the last step began (above the relief)
-  bool stepped = false;
+  const T across = sqrt_op(ray.dx * ray.dx + ray.dy * ray.dy), down = -ray.dz;
+  T px = x, py = y, pz = z;  // where the last step began: above the relief
+  bool above = true;         // (x, y, z) is known to be above the relief (the entry is)
   while (r.iterations < s.max_iterations) {
     if (!finite(x) || !finite(y)) return false;
     T apex, ratio;
     read_cone(m, ray, x, y, apex, ratio, r, ops);
-    if (stepped && z <= apex && r.iterations < s.max_iterations) {  // at or under the box top: where?
+    if (z > apex) above = true;  // over the cell's box top
+    if (!above) {                // at or under it after a step: one height read tells
+      if (r.iterations >= s.max_iterations) break;
       const T h = ray.D * height_at(m.field, x, y, ray.reads);
       ++r.iterations, r.fetches += 4;
       if (ops) *ops += kOpsHeightRead;
       if (z <= h) {  // under: the hit is in the step from p, search it
-        T run = (z - pz) / ray.dz * across;  // the bracket's length across, texels
-        while (run > T(1.0f) && r.iterations < s.max_iterations) {
-          const T mx = (px + x) * half, my = (py + y) * half, mz = (pz + z) * half;
-          const T mh = ray.D * height_at(m.field, mx, my, ray.reads);
-          ++r.iterations, r.fetches += 4;
-          if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 3};
-          if (mz <= mh) x = mx, y = my, z = mz;
-          else px = mx, py = my, pz = mz;
-          run = run * half;
-        }
-        x = px, y = py, z = pz;  // above the relief, the hit within a texel or so on
+        bisect_step(s, m, ray, px, py, pz, x, y, z, r, ops);
+        x = px, y = py, z = pz, above = true;  // above the relief, the hit within a texel or so on
         break;
       }
+      above = true;
     }
     const T t = cone_step(z - apex, ratio, down, across);
     if (t < T(kParallaxNear)) break;
     px = x, py = y, pz = z;
     x += t * ray.dx, y += t * ray.dy, z += t * ray.dz;
-    ++r.skips, stepped = true;
+    ++r.skips, above = false;
   }
+  // The cap came before the last step's end was checked: it may be under the relief, past
+  // the hit; the trace stops where that step began instead, before the hit.
+  if (!above) x = px, y = py, z = pz;
   if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, ray.dx, ray.dy, ray.dz, r, ops, ray.reads);
   return true;
 }
