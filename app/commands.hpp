@@ -39,6 +39,8 @@ CLI::Validator finite_in(double min, double max);
 // A path or text option: if given, not empty (an empty one would be taken as not given).
 extern const CLI::Validator kNotEmpty;
 extern const CLI::Validator kPngPath;  // ends in .png
+extern const CLI::Validator kExrPath;  // ends in .exr
+extern const CLI::Validator kExrOrPngPath;
 // Whether `path` ends in `extension` (".png"), in any case.
 bool has_extension(const std::string& path, const std::string& extension);
 
@@ -67,6 +69,9 @@ void add_frame(core::OutputSet& outputs, const core::Frame& frame, const std::st
 // folder or special file, and is neither another output nor an input (InputError).
 void check_outputs(const std::vector<std::pair<std::string, std::string>>& outputs,
                    const std::vector<std::string>& inputs);
+// Before a run: the map cache folder (--map-cache) is a folder or can become one, and no
+// output is that folder or a folder holding it (InputError).
+void check_map_cache(const std::string& dir, const std::vector<std::pair<std::string, std::string>>& outputs);
 // The memory a run will take beyond its scene (app/memory_estimate.cpp): the pipeline's
 // frame and buffers and the maps its blocks build, the golden model's image, a trace.
 // take_run_memory counts it against the budget, naming the field of the largest part.

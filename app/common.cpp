@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
@@ -53,7 +54,15 @@ void add_frame(core::OutputSet& outputs, const core::Frame& frame, const std::st
                const std::string& heat, float heat_max) {
   if (!heat.empty() && !frame.find("parallax.iterations"))
     throw core::InputError("--heat-map", heat, "the frame has no parallax.iterations layer (no parallax material)");
-  if (!exr.empty()) outputs.write_with(exr, [&](const std::string& tmp) { core::write_exr(tmp, frame); });
+  if (!exr.empty()) {
+    std::string bytes;
+    try {
+      bytes = core::exr_bytes(frame);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(exr + ": " + e.what());
+    }
+    outputs.write(exr, bytes);
+  }
   if (!png.empty()) outputs.write(png, core::png_preview(frame));
   if (!heat.empty()) outputs.write(heat, core::heat_map_png(frame, "parallax.iterations", heat_max));
 }
@@ -119,6 +128,22 @@ const CLI::Validator kPngPath(
     },
     "FILE.png");
 
+// Frames and maps are written as OpenEXR only: a path that names another format (out.png)
+// is refused rather than given EXR bytes that a tool choosing by extension misreads.
+const CLI::Validator kExrPath(
+    [](std::string& text) {
+      return has_extension(text, ".exr") ? std::string()
+                                         : "is written as OpenEXR: give a path ending in .exr (a PNG: --preview)";
+    },
+    "FILE.exr");
+const CLI::Validator kExrOrPngPath(
+    [](std::string& text) {
+      return has_extension(text, ".exr") || has_extension(text, ".png")
+                 ? std::string()
+                 : "is written as OpenEXR (.exr) or PNG (.png): give a path ending in one of them";
+    },
+    "FILE.exr|FILE.png");
+
 CLI::Validator finite_in(double min, double max) {
   return CLI::Validator(
       [min, max](std::string& text) {
@@ -169,6 +194,22 @@ void check_outputs(const std::vector<std::pair<std::string, std::string>>& outpu
     if (fs::exists(st) && !fs::is_regular_file(st))
       throw core::InputError(option, path, "exists and is not a regular file (a FIFO, a device): not replaced");
     probe_writable(option, path);
+  }
+}
+
+void check_map_cache(const std::string& dir, const std::vector<std::pair<std::string, std::string>>& outputs) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw core::InputError("--map-cache", dir, "exists and is not a folder");
+  const fs::path cache = fs::weakly_canonical(fs::absolute(dir), ec);
+  for (const auto& [option, path] : outputs) {
+    if (path.empty()) continue;
+    if (same_file(path, dir)) throw core::InputError(option, path, "is also the --map-cache folder");
+    const fs::path out = fs::weakly_canonical(fs::absolute(path), ec);
+    const auto [o, c] = std::mismatch(out.begin(), out.end(), cache.begin(), cache.end());
+    if (o == out.end())
+      throw core::InputError("--map-cache", dir, "lies inside " + path + ", the file of " + option);
   }
 }
 

@@ -1,5 +1,7 @@
 #include "app/progress.hpp"
 
+#include "shadetlm/core/output.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +14,7 @@ namespace shadetlm::app {
 Progress::Progress(std::string command) : command_(std::move(command)), enabled_(isatty(fileno(stderr)) != 0) {
   if (!enabled_) return;
   try {
+    core::SignalsHeld held;  // the ticker never takes SIGINT or SIGTERM: the main thread does
     ticker_ = std::thread([this] { run(); });
   } catch (const std::system_error&) {  // no thread to be had (a limit): the run goes on without the line
   }
@@ -28,9 +31,12 @@ Progress::~Progress() {
 }
 
 void Progress::phase(const std::string& name) {
-  std::lock_guard lock(mutex_);
-  phase_ = name;
-  share_ = -1;
+  {
+    std::lock_guard lock(mutex_);
+    phase_ = name;
+    share_ = -1;
+  }
+  core::pause_point(name.c_str());
 }
 
 void Progress::done() {

@@ -70,7 +70,7 @@ struct RenderOptions {
   SceneOptions scene;
   std::string output = "out/frame.exr", preview, heat_map, stats, engine = "systemc";
   float heat_max = 32;
-  bool compare = false, allow_nonfinite = false;
+  bool compare = false, allow_nonfinite = false, allow_overflow = false;
   std::string vcd, region, triangles, timeline, timing_log, vectors;
   std::string map_cache;  // parallax maps kept here (app/map_cache.hpp)
 };
@@ -144,6 +144,7 @@ void check_before_simulation(const RenderOptions& opt, const core::Scene& scene,
     for (const auto& f : modules::vector_files(modules::standard_pipeline(), inspect.vectors))
       outputs.push_back({"--vectors", f});
   check_outputs(outputs, scene.inputs);
+  if (!opt.map_cache.empty()) check_map_cache(opt.map_cache, outputs);
   // The traced pixels: the region's part of the frame.
   const modules::TraceRegion& r = inspect.region;
   const int64_t width = scene.camera.width, height = scene.camera.height;
@@ -173,19 +174,14 @@ void check_before_simulation(const RenderOptions& opt, const core::Scene& scene,
                                std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height) + ")");
 }
 
-// Should a later write fail, the inspection files of this run go too.
-void take_back_inspection(const modules::Inspect& inspect) {
-  for (const std::string& path : {inspect.vcd, gtkw_path_of(inspect.vcd), inspect.timeline})
-    if (!path.empty()) core::remove_quietly(path);
-  if (!inspect.vectors.empty())
-    for (const auto& f : modules::vector_files(modules::standard_pipeline(), inspect.vectors)) core::remove_quietly(f);
-}
-
 // Renders the scene on the engine named ("loop" or "systemc"), its share done shown.
 modules::RenderResult render_with_progress(const core::Scene& scene, const std::string& engine,
                                            modules::Inspect inspect, Progress& progress) {
   progress.phase("pipeline");
-  if (progress.enabled()) inspect.progress = [&](double share) { progress.share(share); };
+  inspect.progress = [&progress, halfway = false](double share) mutable {
+    progress.share(share);
+    if (!halfway && share >= 0.5) halfway = true, core::pause_point("pipeline half");
+  };
   return engine == "loop" ? modules::render_loop(scene, inspect) : modules::render_systemc(scene, inspect);
 }
 
@@ -210,21 +206,34 @@ nlohmann::json statistics_of(const RenderOptions& opt, const modules::RenderResu
   return stats;
 }
 
-// Writes the frame, its preview and heat map, the statistics and the timing log, all or
-// none; on failure takes back the inspection files too, and rethrows.
+// Writes the frame, its preview and heat map, the statistics and the timing log beside
+// the inspection files the pipeline wrote into `outputs`, and commits them all: all
+// appear, or none (a failed write, a signal: the temporaries go with `outputs`).
 void write_outputs(const RenderOptions& opt, const modules::RenderResult& r, const nlohmann::json& stats,
-                   const modules::Inspect& inspect) {
-  try {
-    core::OutputSet outputs;
-    // (text from the command line need not be UTF-8: replaced, not refused after the render)
-    if (!opt.stats.empty()) outputs.write(opt.stats, stats.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-    if (!opt.timing_log.empty()) outputs.write(opt.timing_log, r.timing_log);
-    add_frame(outputs, r.frame, opt.output, opt.preview, opt.heat_map, opt.heat_max);
-    outputs.commit();
-  } catch (...) {
-    take_back_inspection(inspect);
-    throw;
+                   core::OutputSet& outputs) {
+  // (text from the command line need not be UTF-8: replaced, not refused after the render)
+  if (!opt.stats.empty()) outputs.write(opt.stats, stats.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  if (!opt.timing_log.empty()) outputs.write(opt.timing_log, r.timing_log);
+  add_frame(outputs, r.frame, opt.output, opt.preview, opt.heat_map, opt.heat_max);
+  outputs.commit();
+}
+
+// Saturations, overflows and invalid operations that the blocks' number formats met,
+// said per block on stderr; exit status 3 unless the user accepts them (--allow-overflow),
+// as for non-finite values: a frame computed through a saturated datapath is not the
+// algorithm's answer.
+int number_events_status(const modules::RenderResult& r, bool allowed) {
+  bool any = false;
+  for (const auto& b : r.blocks) {
+    if (!b.numbers || (b.numbers->events.overflows == 0 && b.numbers->events.invalid == 0)) continue;
+    std::cerr << "shadetlm: " << b.name << " (" << b.numbers->format << "): " << b.numbers->events.overflows
+              << " results saturated or overflowed, " << b.numbers->events.invalid
+              << " invalid operations (blocks." << b.name << ".numbers in --stats)\n";
+    any = true;
   }
+  if (!any) return 0;
+  if (!allowed) std::cerr << "shadetlm: exit status 3: a number format overflowed (--allow-overflow accepts it)\n";
+  return allowed ? 0 : kExitNonfinite;
 }
 
 // The summary's lines on the error against the golden model (stats["error"]).
@@ -275,7 +284,8 @@ Command add_render_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("render", "render a scene through the SystemC/TLM-2.0 pipeline");
   opt->scene.add_to(*cmd);
   cmd->add_option("-o,--output", opt->output, "EXR frame to write")->capture_default_str()
-      ->check(kNotEmpty);
+      ->check(kNotEmpty)
+      ->check(kExrPath);
   cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview (FILE.png)")
       ->check(kNotEmpty)
       ->check(kPngPath);
@@ -291,6 +301,9 @@ Command add_render_command(CLI::App& app) {
   cmd->add_flag("--compare-reference", opt->compare, "also render the golden model and report the error");
   cmd->add_flag("--allow-nonfinite", opt->allow_nonfinite,
                 "exit 0 even when NaN or infinite values reached the frame (written as 0; else exit status 3)");
+  cmd->add_flag("--allow-overflow", opt->allow_overflow,
+                "exit 0 even when a block's number format saturated, overflowed or met an invalid operation "
+                "(said per block; else exit status 3)");
   cmd->add_option("--engine", opt->engine,
                   "systemc: the TLM-2.0 model; loop: the same kernels in a plain C++ loop (no timing)")
       ->check(CLI::IsMember({"systemc", "loop"}))
@@ -318,8 +331,10 @@ Command add_render_command(CLI::App& app) {
             Progress progress("render");
             progress.phase("loading the scene");
             core::Scene scene = opt->scene.load();
-            const modules::Inspect inspect = inspection_of(*opt, scene);
+            modules::Inspect inspect = inspection_of(*opt, scene);
             check_before_simulation(*opt, scene, inspect);
+            core::OutputSet outputs;  // every file of the run, committed together at its end
+            inspect.outputs = &outputs;
             if (!opt->map_cache.empty()) {
               progress.phase("parallax maps (cache)");
               use_map_cache(scene, opt->map_cache);
@@ -330,10 +345,12 @@ Command add_render_command(CLI::App& app) {
             const nlohmann::json stats = statistics_of(*opt, r, scene, &reference_s);
             describe(r.frame, scene, opt->scene, opt->engine == "loop" ? "pipeline-loop" : "pipeline");
             progress.phase("writing");
-            write_outputs(*opt, r, stats, inspect);
+            write_outputs(*opt, r, stats, outputs);
             progress.done();
             print_summary(*opt, scene, r, stats, inspect, reference_s);
-            return nonfinite_status(r.nonfinite_replaced, opt->allow_nonfinite);
+            const int nonfinite = nonfinite_status(r.nonfinite_replaced, opt->allow_nonfinite);
+            const int overflow = number_events_status(r, opt->allow_overflow);
+            return std::max(nonfinite, overflow);
           }};
 }
 

@@ -37,6 +37,8 @@ struct Frame {
 // attributes as string attributes. The file appears only when complete: it is written
 // beside the target and renamed. Throws std::runtime_error naming the path on failure.
 void write_exr(const std::string& path, const Frame& frame);
+// The same file's bytes (to write with an OutputSet); throws std::runtime_error.
+std::string exr_bytes(const Frame& frame);
 // Reads every channel (half and uint are converted to float) and the string attributes.
 // Throws InputError naming the path.
 Frame read_exr(const std::string& path);

@@ -20,33 +20,38 @@
 
 namespace shadetlm::core {
 
-void write_exr(const std::string& path, const Frame& frame) {
-  write_atomically(path, [&](const std::string& tmp) {
-    try {
-      Imf::Header header(frame.width, frame.height);
-      header.compression() = Imf::ZIP_COMPRESSION;
-      for (const auto& [k, v] : frame.attributes) header.insert(k, Imf::StringAttribute(v));
-      Imf::FrameBuffer fb;
-      for (const auto& c : frame.channels) {
-        header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
-        fb.insert(c.name, Imf::Slice(Imf::FLOAT, (char*)c.values.data(), sizeof(float),
-                                     sizeof(float) * frame.width));
-      }
-      // Put together in memory, then written with checked writes: OpenEXR writes its
-      // offset table in its destructor, which swallows a failed write.
-      Imf::StdOSStream bytes;
-      {
-        Imf::OutputFile out(bytes, header);
-        out.setFrameBuffer(fb);
-        out.writePixels(frame.height);
-      }
-      CheckedFile file(tmp, path);
-      file.write(bytes.str());
-      file.close();
-    } catch (const std::exception& e) {
-      throw std::runtime_error(path + ": cannot write the EXR: " + e.what());
+std::string exr_bytes(const Frame& frame) {
+  try {
+    Imf::Header header(frame.width, frame.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    for (const auto& [k, v] : frame.attributes) header.insert(k, Imf::StringAttribute(v));
+    Imf::FrameBuffer fb;
+    for (const auto& c : frame.channels) {
+      header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
+      fb.insert(c.name, Imf::Slice(Imf::FLOAT, (char*)c.values.data(), sizeof(float), sizeof(float) * frame.width));
     }
-  });
+    // Put together in memory, then written with checked writes: OpenEXR writes its
+    // offset table in its destructor, which swallows a failed write.
+    Imf::StdOSStream bytes;
+    {
+      Imf::OutputFile out(bytes, header);
+      out.setFrameBuffer(fb);
+      out.writePixels(frame.height);
+    }
+    return bytes.str();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("cannot encode the EXR: ") + e.what());
+  }
+}
+
+void write_exr(const std::string& path, const Frame& frame) {
+  std::string bytes;
+  try {
+    bytes = exr_bytes(frame);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+  write_file(path, bytes);
 }
 
 Frame read_exr(const std::string& path) {

@@ -5,11 +5,13 @@
 #include <cctype>
 #include <cerrno>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -129,6 +131,13 @@ void remove_temporaries_on_signals() {
   std::signal(SIGXFSZ, SIG_IGN);
 }
 
+void pause_point(const char* point) {
+  static const char* const wanted = std::getenv("SHADETLM_PAUSE_AT");
+  if (wanted == nullptr || std::strcmp(wanted, point) != 0) return;
+  std::cerr << "shadetlm: paused at " << point << " (SHADETLM_PAUSE_AT)" << std::endl;
+  std::raise(SIGSTOP);
+}
+
 Temporary::Temporary(std::string path) : path_(std::move(path)), tmp_(temporary_path_for(path_)) {
   const std::filesystem::path folder = std::filesystem::path(path_).parent_path();
   std::error_code ec;
@@ -217,8 +226,19 @@ void OutputSet::write(const std::string& path, std::string_view bytes) {
   out.close();
 }
 
+SignalsHeld::SignalsHeld() {
+  sigset_t held;
+  sigemptyset(&held);
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&held, s);
+  ::pthread_sigmask(SIG_BLOCK, &held, &before_);
+}
+
+SignalsHeld::~SignalsHeld() { ::pthread_sigmask(SIG_SETMASK, &before_, nullptr); }
+
 void OutputSet::commit() {
   for (const auto& f : files_) f->sync();  // a full disk shows before anything is in place
+  pause_point("commit");
+  SignalsHeld held;
   for (size_t i = 0; i < files_.size(); ++i) {
     try {
       files_[i]->commit(true);

@@ -8,7 +8,10 @@
 //    process by the same signal (exit status 128 + its number); past a file size
 //    limit (SIGXFSZ, ignored) a write fails like any other;
 //  - a temporary left by a run that was killed outright (SIGKILL, a power cut) is named
-//    and removed by the next run on the same host that writes the same output.
+//    and removed by the next run on the same host that writes the same output;
+//  - the outputs of one run form one OutputSet: all renamed into place at its commit,
+//    with SIGINT, SIGTERM and SIGHUP held back for the renames, or none.
+#include <csignal>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -26,6 +29,29 @@ void rename_into_place(const std::string& tmp, const std::string& path);
 
 // Once, at start-up: the signal handlers that take back temporaries.
 void remove_temporaries_on_signals();
+
+// For tests that signal a run at a known point, never after a guessed delay: when the
+// environment's SHADETLM_PAUSE_AT equals `point`, the process says so on stderr and stops
+// itself (SIGSTOP); the test waits for the stop, signals it and lets it continue. The
+// points: every progress phase ("loading the scene", "pipeline", "golden model",
+// "writing", ...), "pipeline half" and "commit" (every output of the run written to its
+// temporary, none renamed yet).
+void pause_point(const char* point);
+
+// Holds SIGINT, SIGTERM and SIGHUP back on this thread while it lives; they are delivered
+// at its end. Around an OutputSet's renames (a signal between two would leave a run's
+// outputs half in place), and around starting a helper thread, which inherits the
+// mask and so never takes these signals (the main thread does, at a safe point).
+class SignalsHeld {
+ public:
+  SignalsHeld();
+  ~SignalsHeld();
+  SignalsHeld(const SignalsHeld&) = delete;
+  SignalsHeld& operator=(const SignalsHeld&) = delete;
+
+ private:
+  sigset_t before_;
+};
 
 // A temporary being written, registered so that a signal removes it; removed on
 // destruction unless committed.

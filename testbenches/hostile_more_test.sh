@@ -143,11 +143,14 @@ finite() {
     if [[ -e out.exr ]]; then
       "$py" tools.py finite out.exr || { echo "FAIL $name: non-finite values in the frame (exit $rc)"; ok=0; }
     elif ((rc == 0)); then echo "FAIL $name: exit 0 and no frame"; ok=0; fi
-    local replaced=0
+    local replaced=0 overflows=0
     [[ -e out.json ]] && replaced=$("$py" -c 'import json, sys; print(json.load(open(sys.argv[1])).get("nonfinite_replaced", 0))' out.json)
+    [[ -e out.json ]] && overflows=$("$py" -c 'import json, sys; n = json.load(open(sys.argv[1])).get("numbers", {}); print(n.get("overflows", 0) + n.get("invalid", 0))' out.json)
     if ((rc == 0 && replaced > 0)); then
       echo "FAIL $name: $replaced non-finite values replaced, yet exit 0"; ok=0
-    elif ((rc != 0)) && ! grep -qiE 'non-finite|nan|infinit|replaced' stderr; then
+    elif ((rc == 0 && overflows > 0)); then  # saturation is as loud as a NaN (issue 38)
+      echo "FAIL $name: $overflows overflows or invalid operations counted, yet exit 0"; ok=0
+    elif ((rc != 0)) && ! grep -qiE 'non-finite|nan|infinit|replaced|saturated|overflow' stderr; then
       echo "FAIL $name: exit $rc without naming /$re/ or the non-finite values"; ok=0
     fi
     ((ok)) && echo "NOTE $name: rendered (exit $rc, $replaced replaced)"

@@ -175,13 +175,13 @@ std::string timeline_page(const std::string& json) {
   return page.substr(0, at) + escaped + page.substr(at + mark.size());
 }
 
-void Timeline::write(const std::string& path, const std::vector<std::string>& names, double clock_mhz,
+void Timeline::write(core::OutputSet& outputs, const std::string& path, const std::vector<std::string>& names, double clock_mhz,
                      const std::string& scene) const {
   std::string end = path.size() >= 5 ? path.substr(path.size() - 5) : "";
   for (char& c : end) c = char(std::tolower(static_cast<unsigned char>(c)));
   const bool html = end == ".html";  // (any case, as the render's check takes it)
   const std::string text = json(names, clock_mhz, scene);
-  core::write_file(path, html ? timeline_page(text) : text);
+  outputs.write(path, html ? timeline_page(text) : text);
 }
 
 }  // namespace shadetlm::modules

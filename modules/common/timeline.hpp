@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "shadetlm/core/output.hpp"
+
 namespace shadetlm::modules {
 
 class Timeline {
@@ -60,9 +62,9 @@ class Timeline {
   void limit_to_region() { region_ = true; }
   const std::vector<Slice>& slices() const { return slices_; }
   // Writes the JSON, or the viewer page with the JSON inside when `path` ends in
-  // .html; whole or not at all (core/output.hpp). The scene's file and the clock go
-  // into its otherData.
-  void write(const std::string& path, const std::vector<std::string>& block_names, double clock_mhz,
+  // .html, to its temporary in `outputs` (core/output.hpp). The scene's file and the
+  // clock go into its otherData.
+  void write(core::OutputSet& outputs, const std::string& path, const std::vector<std::string>& block_names, double clock_mhz,
              const std::string& scene) const;
   std::string json(const std::vector<std::string>& block_names, double clock_mhz, const std::string& scene) const;
 

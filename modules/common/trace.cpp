@@ -87,7 +87,7 @@ class VcdText {
 
 }  // namespace
 
-void Tracer::write_vcd(const std::string& path) {
+void Tracer::write_vcd(core::OutputSet& outputs, const std::string& path) {
   const double kUnknown = std::numeric_limits<double>::quiet_NaN();  // an integer written as x
   // The signals' current values: per probe valid, ready, x, y, triangle, then values.
   struct Signal {
@@ -99,8 +99,7 @@ void Tracer::write_vcd(const std::string& path) {
   };
   std::vector<std::vector<Signal>> signals(info_.size());
   size_t next_id = 1;  // 0: end_of_trace
-  core::Temporary tmp(path);
-  core::CheckedFile file(tmp.path(), path);
+  core::CheckedFile file(outputs.temporary(path), path);
   VcdText vcd(file);
   vcd << "$version shadetlm " << core::kVersion << " $end\n$timescale 1 ps $end\n$scope module shadetlm $end\n"
       << "$var wire 1 " << vcd_id(0) << " end_of_trace $end\n";
@@ -192,7 +191,6 @@ void Tracer::write_vcd(const std::string& path) {
   vcd << "\n";
   vcd.flush();
   file.close();
-  tmp.commit();
 }
 
 }  // namespace shadetlm::modules

@@ -14,6 +14,8 @@
 
 #include <systemc>
 
+#include "shadetlm/core/output.hpp"
+
 namespace shadetlm::modules {
 
 // False in a build configured with -DSHADETLM_TRACING=OFF: the blocks' tracing hooks
@@ -44,8 +46,9 @@ class Tracer {
   // A pixel at a block's output (values in the order of add_probe): valid from cycle
   // `valid`, handed on at `handed` (ready high then; low before it: a stall).
   void record(int probe, uint64_t valid, uint64_t handed, int x, int y, uint32_t triangle, const double* values);
-  // After the run: the records as a VCD, written whole or not at all (core/output.hpp).
-  void write_vcd(const std::string& path);  // (sorts the records)
+  // After the run: the records as a VCD, written to its temporary in `outputs`, the
+  // run's outputs that appear together (core/output.hpp).
+  void write_vcd(core::OutputSet& outputs, const std::string& path);  // (sorts the records)
 
   // The signals, for the GTKWave save file: (block, full VCD names).
   struct ProbeInfo {

@@ -243,7 +243,8 @@ RenderResult render_systemc(const core::Scene& scene, const PipelineDecl& declar
 namespace {
 // The timeline's counters from the run's bins (each block's busy cycles, the DRAM's
 // bytes, the FIFOs' occupancy), then the file.
-void write_timeline(Top& top, const RenderResult& r, const Inspect& inspect, const std::string& scene) {
+void write_timeline(core::OutputSet& outputs, Top& top, const RenderResult& r, const Inspect& inspect,
+                    const std::string& scene) {
   Timeline& timeline = top.timeline_slices();
   const uint64_t bin = inspect.bin_cycles > 0 ? inspect.bin_cycles : Top::kTimelineBin;
   for (const auto& m : top.modules())
@@ -253,7 +254,7 @@ void write_timeline(Top& top, const RenderResult& r, const Inspect& inspect, con
     timeline.add_series("DRAM bandwidth", "bytes_per_cycle", bin, dram->bytes_per_bin(), r.frame_cycles, 1);
   timeline.add_fifo_series(top.names(), r.frame_cycles);
   if (inspect.region_given) timeline.limit_to_region();
-  timeline.write(inspect.timeline, top.names(), r.clock_mhz, scene);
+  timeline.write(outputs, inspect.timeline, top.names(), r.clock_mhz, scene);
 }
 }  // namespace
 
@@ -294,27 +295,25 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
     for (size_t i = 0; i <= top.line().size(); ++i) log->stats(m[i]->block_name(), m[i]->times());
     r.timing_log = log->text();
   }
+  core::OutputSet own;  // (when the caller has none)
+  core::OutputSet& outputs = inspect.outputs ? *inspect.outputs : own;
   if (top.tracer()) {
     r.trace_records = top.tracer()->records();
-    top.tracer()->write_vcd(inspect.vcd);
+    top.tracer()->write_vcd(outputs, inspect.vcd);
     const double ps = 1e6 / clock_mhz;
     // The view opens on the first traced packets: a window of kFirstView cycles, where a
     // one-cycle valid pulse is a few pixels wide.
     const uint64_t first = top.tracer()->first_cycle(), last = std::min(top.tracer()->last_cycle(), first + kFirstView);
-    write_gtkw(inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw", inspect.vcd, top.tracer()->probes(),
+    write_gtkw(outputs, inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw", inspect.vcd, top.tracer()->probes(),
                double(first) * ps, double(last) * ps);
   }
   if (const Dram* dram = top.line().dram(); dram && inspect.bin_cycles > 0) r.dram_bytes_per_bin = dram->bytes_per_bin();
-  if (!inspect.timeline.empty()) write_timeline(top, r, inspect, pipeline.scene().file);
-  if (!top.vectors().empty()) {
-    std::filesystem::create_directories(inspect.vectors);
-    core::OutputSet files;  // a block's two files together or not at all
-    for (const auto& v : top.vectors()) {
-      for (bool in : {true, false}) files.write(vector_path(inspect.vectors, v->block(), in), v->text(in));
-      r.vector_pixels += v->pixels();
-    }
-    files.commit();
+  if (!inspect.timeline.empty()) write_timeline(outputs, top, r, inspect, pipeline.scene().file);
+  for (const auto& v : top.vectors()) {
+    for (bool in : {true, false}) outputs.write(vector_path(inspect.vectors, v->block(), in), v->text(in));
+    r.vector_pixels += v->pixels();
   }
+  if (!inspect.outputs) own.commit();
   return r;
 }
 
@@ -327,7 +326,7 @@ std::vector<std::string> vector_files(const PipelineDecl& declaration, const std
   return files;
 }
 
-void write_gtkw(const std::string& path, const std::string& vcd, const std::vector<Tracer::ProbeInfo>& probes,
+void write_gtkw(core::OutputSet& outputs, const std::string& path, const std::string& vcd, const std::vector<Tracer::ProbeInfo>& probes,
                 double from_ps, double to_ps) {
   // GTKWave's save format: "@<flags in hex>" sets how the following signals are
   // drawn, "-text" is a comment line. 28 = binary, right-justified (1-bit valid, ready);
@@ -357,7 +356,7 @@ void write_gtkw(const std::string& path, const std::string& vcd, const std::vect
       out << "@1000200\n-" << p.block << "\n";  // group end
     }
   }
-  core::write_file(path, out.str());
+  outputs.write(path, out.str());
 }
 
 }  // namespace shadetlm::modules

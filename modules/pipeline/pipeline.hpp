@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "shadetlm/core/output.hpp"
 #include "shadetlm/core/scene.hpp"
 #include "shadetlm/modules/common/declaration.hpp"
 #include "shadetlm/modules/common/report.hpp"
@@ -67,6 +68,9 @@ struct Inspect {
   bool timing_log = false;    // keep every pixel's times at every block (RenderResult::timing_log)
   uint64_t bin_cycles = 0;      // utilization histogram bin (0: not kept; it costs a little per packet)
   std::function<void(double)> progress;  // share of the triangles set up, now and then (a progress bar)
+  // The run's outputs, which the caller commits together with its own (the frame, the
+  // statistics); null: the files above are committed when the simulation ends.
+  core::OutputSet* outputs = nullptr;
 };
 
 // The blocks of `declaration` that write test vectors, and so the files --vectors
@@ -88,7 +92,7 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect = {});
 // Writes a GTKWave save file for `vcd`: the blocks' signals grouped in pipeline
 // order, real values drawn as analog steps.
 // The view opens on [from_ps, to_ps].
-void write_gtkw(const std::string& path, const std::string& vcd, const std::vector<Tracer::ProbeInfo>& probes,
+void write_gtkw(core::OutputSet& outputs, const std::string& path, const std::string& vcd, const std::vector<Tracer::ProbeInfo>& probes,
                 double from_ps, double to_ps);
 
 }  // namespace shadetlm::modules
