@@ -81,7 +81,8 @@ Command add_compare_command(CLI::App& app) {
   cmd->add_option("--hardfail", opt->compare.hard_fail, "the layer fails when any pixel's error is over this")
       ->check(threshold);
   cmd->add_option("--diff", opt->diff, "write |A - B| per channel to this EXR")
-      ->check(kNotEmpty);
+      ->check(kNotEmpty)
+      ->check(kExrPath);
   cmd->add_flag("--json", opt->json, "print the metrics as JSON");
   cmd->add_option("--images", opt->images,
                   "write PREFIX-new.png, -reference.png, -diff.png (|A-B| x16) and -heat.png (error heat map)")

@@ -15,7 +15,8 @@ namespace shadetlm::app {
 // Points every parallax material that reads a map (distance or cone) and names no
 // map_file at its map in `dir`, building and writing the ones `dir` lacks first. Each is
 // written whole or not at all (core/output.hpp), so runs building the same map at once
-// leave one whole copy. Returns the number of maps built.
+// leave one whole copy. An entry that does not read as its map (truncated, damaged:
+// its checksum) is built again, with a warning naming it. Returns the number of maps built.
 int use_map_cache(core::Scene& scene, const std::string& dir);
 
 }  // namespace shadetlm::app

@@ -55,7 +55,8 @@ void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, s
     if (k == "boxgapmap") cmd->alias("distancemap");  // its name before Donnelly's map was built
     cmd->add_option("height", opt->height, "height map image (first channel, clamped to [0, 1])")->required();
     cmd->add_option("-o,--output", opt->output, "EXR to write")->capture_default_str()
-      ->check(kNotEmpty);
+      ->check(kNotEmpty)
+      ->check(kExrPath);
     cmd->add_option("--slices", opt->slices, "D: voxels across the relief's depth")
         ->capture_default_str()
         ->check(finite_in(1, 256));

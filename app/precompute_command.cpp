@@ -60,7 +60,8 @@ Command add_precompute_command(CLI::App& app) {
   nm->add_option("-o,--output", opt->output,
                  "EXR to write (tiled, mip-mapped, float), or .png: the finest level at 8 bits, (N + 1) / 2")
       ->capture_default_str()
-      ->check(kNotEmpty);
+      ->check(kNotEmpty)
+      ->check(kExrOrPngPath);
   nm->add_option("--scale", opt->scale, "height scale: F = scale · h")->capture_default_str()->check(finite_in(0.0, 1e6));
   nm->add_option("--k", opt->k, "square patch: |Pu| = |Pv| = k (square form)")->capture_default_str()->check(
       finite_in(1e-6, 1e6));

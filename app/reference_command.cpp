@@ -19,7 +19,8 @@ Command add_reference_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("reference", "render a scene through the golden model (exact, double precision)");
   opt->scene.add_to(*cmd);
   cmd->add_option("-o,--output", opt->output, "EXR frame to write")->capture_default_str()
-      ->check(kNotEmpty);
+      ->check(kNotEmpty)
+      ->check(kExrPath);
   cmd->add_option("--preview", opt->preview, "also write an sRGB PNG preview (FILE.png)")
       ->check(kNotEmpty)
       ->check(kPngPath);

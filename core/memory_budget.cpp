@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "shadetlm/core/input_error.hpp"
@@ -20,6 +21,16 @@ uint64_t MemoryBudget::machine_default() {
   std::ifstream cgroup("/sys/fs/cgroup/memory.max");  // "max" when unlimited
   uint64_t limit = 0;
   if (cgroup >> limit && limit > 0 && limit < memory) memory = limit;
+  // Under ulimit -v every allocation fails past the limit, whatever the machine has.
+  struct rlimit space {};
+  if (::getrlimit(RLIMIT_AS, &space) == 0 && space.rlim_cur != RLIM_INFINITY) {
+    std::ifstream statm("/proc/self/statm");  // the address space mapped now, in pages
+    uint64_t mapped_pages = 0;
+    statm >> mapped_pages;
+    const uint64_t mapped = mapped_pages * uint64_t(sysconf(_SC_PAGE_SIZE));
+    const uint64_t left = uint64_t(space.rlim_cur) > mapped ? uint64_t(space.rlim_cur) - mapped : 0;
+    if (left < memory) memory = left;
+  }
   return memory / 2;
 }
 

@@ -5,8 +5,10 @@
 // the run stops with the file and field that drive the size, before allocating, rather
 // than fail in the allocator (or the machine's out-of-memory killer) with no name.
 //
-// The budget is --max-memory, by default half the machine's memory (the smaller of its
-// physical memory and its control group's limit). Counts are not given back: they bound
+// The budget is --max-memory, by default half the memory the process can have: the
+// smallest of the machine's physical memory, its control group's limit and, under an
+// address-space limit (ulimit -v, RLIMIT_AS), the address space left to the process when
+// the budget is made (what the libraries and stacks have not mapped already). Counts are not given back: they bound
 // what a run holds at its peak, from above.
 #include <cstdint>
 #include <string>
@@ -17,7 +19,7 @@ class MemoryBudget {
  public:
   // The process's budget (one run a process).
   static MemoryBudget& process();
-  static uint64_t machine_default();  // half of the machine's memory
+  static uint64_t machine_default();  // half of the memory the process can have (above)
 
   void set_limit(uint64_t bytes) { limit_ = bytes; }
   uint64_t limit() const { return limit_; }

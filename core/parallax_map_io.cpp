@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "shadetlm/core/frame.hpp"
 #include "shadetlm/core/input_error.hpp"
@@ -38,6 +39,35 @@ void check_kind(const Frame& f, const std::string& path, const std::vector<std::
   throw InputError(path, "shadetlm:map", "is \"" + it->second + "\", expected " + expected);
 }
 
+// FNV-1a over the map's channels, names and float values, in the order of their names
+// (an EXR file's): written as shadetlm:checksum, so that a map whose header still
+// matches its scene but whose data was changed or damaged is refused.
+std::string data_checksum(const Frame& f) {
+  std::vector<const Channel*> channels;
+  for (const Channel& c : f.channels) channels.push_back(&c);
+  std::sort(channels.begin(), channels.end(), [](const Channel* a, const Channel* b) { return a->name < b->name; });
+  Fnv1a h;
+  for (const Channel* c : channels) {
+    h.mix(c->name.c_str(), c->name.size() + 1);
+    h.mix(c->values.data(), c->values.size() * sizeof(float));
+  }
+  return h.hex();
+}
+
+void write_map(const std::string& path, Frame& f) {
+  f.attributes["shadetlm:checksum"] = data_checksum(f);
+  write_exr(path, f);
+}
+
+void check_data(const Frame& f, const std::string& path) {
+  const auto it = f.attributes.find("shadetlm:checksum");
+  if (it == f.attributes.end())
+    throw InputError(path, "shadetlm:checksum", "missing: a map written before maps carried one; precompute it again");
+  if (it->second != data_checksum(f))
+    throw InputError(path, "shadetlm:checksum",
+                     "does not match the map's data (the file was changed or damaged); precompute it again");
+}
+
 }  // namespace
 
 void write_volume_map(const std::string& path, const VolumeMap& map, const std::string& kind) {
@@ -50,12 +80,13 @@ void write_volume_map(const std::string& path, const VolumeMap& map, const std::
     std::copy(map.values.begin() + ptrdiff_t(size_t(k) * cells), map.values.begin() + ptrdiff_t(size_t(k + 1) * cells),
               c.begin());
   }
-  write_exr(path, f);
+  write_map(path, f);
 }
 
 VolumeMap read_volume_map(const std::string& path) {
   const Frame f = read_exr(path);
   check_kind(f, path, {"box-gap", "refined", "donnelly", "distance"});
+  check_data(f, path);
   VolumeMap m;
   m.width = f.width, m.height = f.height;
   m.slices = attribute_int(f, path, "shadetlm:slices");
@@ -81,12 +112,13 @@ void write_cone_map(const std::string& path, const ConeMap& map) {
   f.attributes = map.params;
   f.add("apex") = map.apex;
   f.add("ratio") = map.ratio;
-  write_exr(path, f);
+  write_map(path, f);
 }
 
 ConeMap read_cone_map(const std::string& path) {
   const Frame f = read_exr(path);
   check_kind(f, path, {"cone", "relaxed-cone"});
+  check_data(f, path);
   ConeMap m;
   m.width = f.width, m.height = f.height;
   m.slices = attribute_int(f, path, "shadetlm:slices");

@@ -527,6 +527,47 @@ TEST_CASE("maps go to EXR with their parameters and come back, bad files named",
   CHECK_THROWS_AS(core::height_field(nan_map, "nan.png", "height_map"), core::InputError);
 }
 
+// The field of the InputError that reading the map at `path` throws ("" if none).
+template <class Read>
+std::string checksum_refusal(const std::string& path, Read read) {
+  try {
+    read(path);
+  } catch (const core::InputError& e) {
+    CHECK(std::string(e.what()).find(path) != std::string::npos);  // the file is named
+    return e.field();
+  }
+  return "";
+}
+
+TEST_CASE("a map whose data no longer matches its checksum is refused, its header matching or not", "[parallax]") {
+  const auto dir = test::temp_dir("parallax-checksums");
+  const core::HeightField f = core::height_field(noise_map(16), "map", "");
+  const std::string volume = (dir / "v.exr").string(), cone = (dir / "c.exr").string();
+  core::write_volume_map(volume, core::box_gap_map(f, 8), "box-gap");
+  core::write_cone_map(cone, core::cone_map(f, 8, 32));
+  const auto read_volume = [](const std::string& p) { core::read_volume_map(p); };
+  const auto read_cone = [](const std::string& p) { core::read_cone_map(p); };
+  CHECK(checksum_refusal(volume, read_volume).empty());
+  CHECK(checksum_refusal(cone, read_cone).empty());
+  // Every distance times 1000, the header (kind, key, checksum) kept: refused.
+  core::Frame scaled = core::read_exr(volume);
+  for (auto& c : scaled.channels)
+    for (float& v : c.values) v *= 1000;
+  core::write_exr((dir / "scaled.exr").string(), scaled);
+  CHECK(checksum_refusal((dir / "scaled.exr").string(), read_volume) == "shadetlm:checksum");
+  // One ratio of a cone map changed by one ulp: refused.
+  core::Frame nudged = core::read_exr(cone);
+  float& r = nudged.at("ratio")[7];
+  r = std::nextafter(r, 2 * r + 1);
+  core::write_exr((dir / "nudged.exr").string(), nudged);
+  CHECK(checksum_refusal((dir / "nudged.exr").string(), read_cone) == "shadetlm:checksum");
+  // A map without a checksum (written before maps carried one): refused, naming it.
+  core::Frame old = core::read_exr(volume);
+  old.attributes.erase("shadetlm:checksum");
+  core::write_exr((dir / "old.exr").string(), old);
+  CHECK(checksum_refusal((dir / "old.exr").string(), read_volume) == "shadetlm:checksum");
+}
+
 // The field of the InputError that reading `s`'s map for `height` throws ("" if none).
 std::string map_refusal(const core::Texture& height, const core::ParallaxSettings& s) {
   try {
