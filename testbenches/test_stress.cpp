@@ -3,6 +3,7 @@
 // triangles, nearly opposite and near-zero normals, coordinates at ±1e6, the near plane,
 // grazing views, full-depth height steps. No NaN or infinity may reach a frame — the
 // pipeline's or the golden model's — and coverage must be the golden model's.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -89,4 +90,22 @@ TEST_CASE("re-seeding the normal walker bounds its error on long spans and tall 
   const double tall_none = normal_error("tall-triangle.json", "none"), tall_line = normal_error("tall-triangle.json", "line");
   INFO("tall triangle: none " << tall_none << ", line " << tall_line);
   CHECK(tall_line < tall_none / 10);
+}
+
+TEST_CASE("a radicand carried along the line that would reach zero is dropped for a seed: no non-finite normal",
+          "[stress]") {
+  // Between nearly opposite normals |N|² passes near zero, and the float32 rounding that
+  // seed=line carries along a line took R below it (6 non-finite normals before the guard).
+  const core::Scene s = core::load_scene(test::source_path("scenes/stress/opposite-normals.json"),
+                                         {"pipeline.normalize.mode=forward-difference", "pipeline.normalize.seed=line"});
+  const modules::RenderResult r = modules::render_loop(s);
+  const auto normalize = std::find_if(r.blocks.begin(), r.blocks.end(), [](const auto& b) { return b.name == "normalize"; });
+  REQUIRE(normalize != r.blocks.end());
+  REQUIRE(normalize->numbers);
+  CHECK(normalize->numbers->nonfinite == 0);
+  const uint64_t reseeds = normalize->details.at("reseeds").get<uint64_t>();
+  INFO("re-seeds " << reseeds << " of " << normalize->details.at("seeds").get<uint64_t>() << " seeds");
+  CHECK(reseeds > 0);
+  CHECK(reseeds <= normalize->details.at("seeds").get<uint64_t>());
+  CHECK(r.nonfinite_replaced == 0);
 }

@@ -71,10 +71,12 @@ void NormalizeKernel::process(SpanPacket& p) {
   const bool direct = mode_ == NormalizeMode::ForwardDifference && core::bump_path(t.material->path);
   if (p.count == 0) return;
   start_ = start_of(p, direct);
-  with_number_type(numbers_, [&](auto zero) { normalize_as<decltype(zero)>(p, direct); });
+  const Start planned = start_;
+  with_number_type(numbers_, [&](auto zero) { normalize_as<decltype(zero)>(p, direct); });  // (may re-seed)
   if (!direct && mode_ == NormalizeMode::ForwardDifference) {
     if (start_ == Start::Seed) ++seeds_;
-    if (start_ == Start::Jump) ++jumps_;
+    if (planned == Start::Jump) ++jumps_;
+    if (planned != Start::Seed && start_ == Start::Seed) ++reseeds_;
   }
   nonfinite_ += count_nonfinite(p.n, p.count);
   tally_.add(direct ? 1 : 0, p.count);
@@ -141,20 +143,24 @@ void NormalizeKernel::normalize_as(SpanPacket& p, bool direct) {
     state = start_ == Start::Seed ? RadicandState<T>::seed(n0, dh, T(t.c)) : RadicandState<T>{T(line_.r), T(line_.delta)};
     if (start_ == Start::Jump) state.jump(p.x0 - line_.next_x, T(t.c));
   }
+  // A carried radicand that would reach zero or below is dropped: the packet is seeded.
+  bool reseeded = false;
+  bool* guard = carried && start_ != Start::Seed ? &reseeded : nullptr;
   if constexpr (std::is_same_v<T, float>) {  // in place, in whole groups of lanes (kLanes) …
     const int count = carried ? p.count : lanes(p.count);  // … but a carried radicand steps to the last pixel only
-    normalize_span(p.n[0], p.n[1], p.n[2], count, dh, T(t.c), mode_, direct, carried);
+    normalize_span(p.n[0], p.n[1], p.n[2], count, dh, T(t.c), mode_, direct, carried, guard);
   } else {  // the packet's float32 wires rounded to the format, and back
     T n[3][kSpanMax];
     for (int c = 0; c < 3; ++c)
       for (int i = 0; i < p.count; ++i) n[c][i] = T(p.n[c][i]);
-    normalize_span(n[0], n[1], n[2], p.count, dh, T(t.c), mode_, direct, carried);
+    normalize_span(n[0], n[1], n[2], p.count, dh, T(t.c), mode_, direct, carried, guard);
     for (int c = 0; c < 3; ++c)
       for (int i = 0; i < p.count; ++i) {
         p.n[c][i] = float(n[c][i]);
         if constexpr (std::is_same_v<T, Fixed>) raw_out_[c][i] = n[c][i].raw();  // (wider than a float's)
       }
   }
+  if (reseeded) start_ = Start::Seed;  // (its work: a seed's cycle before the first pixel)
   if (carried) line_ = {true, t.id, p.y, p.x0 + p.count, double(state.r), double(state.delta)};
 }
 

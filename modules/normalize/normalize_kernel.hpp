@@ -19,6 +19,7 @@
 //
 // The kernels are templates over the number type, so that a testbench can run them on
 // Counted<float> and check the operation counts declared here.
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -137,10 +138,13 @@ void normalize_pixels(T* nx, T* ny, T* nz, int count) {
 // from one pixel to the next; c = 2|ΔN_H|².
 // With `direct`, forward-difference mode takes each radicand directly (bump packets).
 // Forward-difference mode starts from `carried` (R and δ at nx[0]) when given, else
-// seeds at nx[0]; it leaves in `carried` the state after the span.
+// seeds at nx[0]; it leaves in `carried` the state after the span. With `reseeded`, a
+// carried radicand that reaches zero or below on the span (rounding carried along a long
+// line between near-opposite normals: |N|² itself never does) is dropped, the span seeded
+// at nx[0] instead, and *reseeded set: the guard is the sign bit of each R, a wire.
 template <class T>
 void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, NormalizeMode mode, bool direct = false,
-                    RadicandState<T>* carried = nullptr) {
+                    RadicandState<T>* carried = nullptr, bool* reseeded = nullptr) {
   if (mode == NormalizeMode::ForwardDifference && direct)
     return normalize_pixels<NormalizeMode::ForwardDifference>(nx, ny, nz, count);
   if (mode == NormalizeMode::ForwardDifference) {
@@ -151,6 +155,11 @@ void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, Normaliz
     RadicandState<T> radicands = carried ? *carried : RadicandState<T>::seed(n0, dh, c);
     T r[kSpanMax];
     for (int i = 0; i < count; ++i) r[i] = radicands.next(c);
+    if (carried && reseeded && std::any_of(r, r + count, [](T v) { return !(v > T(0.0f)); })) {
+      radicands = RadicandState<T>::seed(n0, dh, c);
+      for (int i = 0; i < count; ++i) r[i] = radicands.next(c);
+      *reseeded = true;
+    }
     if (carried) *carried = radicands;
     for (int i = 0; i < count; ++i) {
       T n[3] = {nx[i], ny[i], nz[i]};
@@ -203,10 +212,12 @@ class NormalizeKernel {
   bool bypass(const SpanPacket&) const { return false; }
   NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
   // Pixels and packets normalized (in either engine), (forward-difference mode) radicands
-  // seeded and jumped, and the pixels taking the radicand direct there (bump packets).
+  // seeded (re-seeds included) and jumped, carried radicands dropped for a re-seed
+  // (seed=line: one would have reached zero or below), and the pixels taking the
+  // radicand direct there (bump packets).
   nlohmann::json details() const {
     return {{"pixels", tally_.pixels[0] + tally_.pixels[1]}, {"packets", tally_.packets[0] + tally_.packets[1]},
-            {"seeds", seeds_}, {"jumps", jumps_}, {"direct_pixels", tally_.pixels[1]}};
+            {"seeds", seeds_}, {"jumps", jumps_}, {"reseeds", reseeds_}, {"direct_pixels", tally_.pixels[1]}};
   }
   // Waveforms: the radicand |N|² of the incoming normal (kept only for traced
   // packets) and the normalized normal.
@@ -242,7 +253,7 @@ class NormalizeKernel {
   RadicandSeed seed_;
   Start start_ = Start::Seed;
   Line line_;
-  uint64_t seeds_ = 0, jumps_ = 0;  // forward-difference packets seeded, jumped
+  uint64_t seeds_ = 0, jumps_ = 0, reseeds_ = 0;  // forward-difference packets seeded, jumped, re-seeded
   uint16_t seeded_[kSpanMax];
   PacketTally<2> tally_;  // packets of mode_ (0); forward-difference mode's bump packets, radicand direct (1)
   NumberContext numbers_;
