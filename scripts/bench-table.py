@@ -5,15 +5,32 @@ per path, SystemC / loop instructions per shaded pixel and their ratio in each r
 import re
 import sys
 
+
+def fail(message):
+    """A bad argument or file: one line, exit 2."""
+    print("bench-table: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
 def counts(path):
-    """{path label: {engine: instructions per shaded pixel}} in the order printed."""
+    """{path label: {engine: instructions per shaded pixel}} in the order printed; exits 2
+    when the file cannot be read or holds none."""
     out = {}
-    for line in open(path):
-        m = re.match(r"\s+(.+?)\s+(systemc|loop)\s+\d+ instructions /\s+\d+ shaded pixels =\s+([0-9.]+)", line)
-        if m:
-            out.setdefault(m.group(1), {})[m.group(2)] = float(m.group(3))
+    try:
+        with open(path) as f:
+            for line in f:
+                m = re.match(r"\s+(.+?)\s+(systemc|loop)\s+\d+ instructions /\s+\d+ shaded pixels =\s+([0-9.]+)", line)
+                if m:
+                    out.setdefault(m.group(1), {})[m.group(2)] = float(m.group(3))
+    except (OSError, ValueError) as e:  # ValueError: bytes that are not text
+        fail("%s: cannot read it: %s" % (path, e.strerror if isinstance(e, OSError) else e))
+    if not out:
+        fail("%s: no instruction counts in it (the output of scripts/bench.sh)" % path)
     return out
 
+
+if len(sys.argv) not in (3, 5):
+    fail("usage: scripts/bench-table.py RUN_A.txt RUN_B.txt [LABEL_A LABEL_B]")
 a, b = counts(sys.argv[1]), counts(sys.argv[2])
 label_a, label_b = (sys.argv[3], sys.argv[4]) if len(sys.argv) > 4 else ("A", "B")
 print(f"| path (instructions a shaded pixel) | SystemC / loop, {label_a} | ratio | SystemC / loop, {label_b} | ratio |")

@@ -29,6 +29,9 @@ OWNERS = [
     ("texel_project", r"TexelProject"),
 ]
 
+if len(sys.argv) > 1 or sys.stdin.isatty():
+    print("block-share: reads callgrind_annotate's output on stdin, and takes no arguments", file=sys.stderr)
+    sys.exit(2)
 costs = {}
 total = 0
 for line in sys.stdin:

@@ -14,8 +14,22 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def fail(message):
+    """A bad argument: one line, exit 2, before anything is made."""
+    print("bump-report: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+if len(sys.argv) not in (2, 4) or len(sys.argv) == 4 and sys.argv[2] != "--images":
+    fail("usage: scripts/bump-report.py SHADETLM_BINARY [--images DIR]")
 BIN = sys.argv[1]
-IMAGES = sys.argv[sys.argv.index("--images") + 1] if "--images" in sys.argv else None
+IMAGES = sys.argv[3] if len(sys.argv) == 4 else None
+if not (os.path.isfile(BIN) and os.access(BIN, os.X_OK)):
+    fail("%s: no such program (the shadetlm binary, e.g. build/app/shadetlm)" % BIN)
+if IMAGES is not None and (not IMAGES or os.path.exists(IMAGES) and not os.path.isdir(IMAGES)):
+    fail("--images %r: not a folder (the previews'; made when missing)" % IMAGES)
 TMP = tempfile.mkdtemp(prefix="bump-report-")
 SURFACES = ["quad", "sphere", "torus", "knot"]
 PATHS = ["phong", "bump-classic", "bump-tangent", "bump-square", "bump-object"]
@@ -34,7 +48,7 @@ def render(surface, sets, name="run", preview=None):
     exr = os.path.join(TMP, name + ".exr")
     stats = os.path.join(TMP, name + ".json")
     cmd = [BIN, "render", os.path.join(ROOT, "scenes/bump", surface + ".json"), "-o", exr, "--stats", stats,
-           "--compare-reference"]
+           "--compare-reference", "--allow-overflow"]  # a format's overflows are counted in the stats
     if preview:
         cmd += ["--preview", preview]
     for s in sets:

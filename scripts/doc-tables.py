@@ -5,14 +5,37 @@ Leaves the doc as it was, and exits 1 naming why, if the count or a marker is wr
 With --run it runs the report itself, passes its output on as it comes, and touches the
 doc only if the report exits 0 (else it exits with the report's status).
 Usage: scripts/doc-tables.py REPORT.txt DOC.md NAME COUNT
-       scripts/doc-tables.py --run DOC.md NAME COUNT -- COMMAND [ARG ...]"""
+       scripts/doc-tables.py --run DOC.md NAME COUNT -- COMMAND [ARG ...]
+Bad arguments, or a file that cannot be read: one line, exit 2, the doc as it was."""
 import re
 import subprocess
 import sys
 
-if sys.argv[1] == "--run":
+
+def fail(message):
+    print("doc-tables: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+def read(path):
+    try:
+        with open(path) as f:
+            return f.read()
+    except (OSError, ValueError) as e:  # ValueError: bytes that are not text
+        fail("%s: cannot read it: %s" % (path, e.strerror if isinstance(e, OSError) else e))
+
+
+run = sys.argv[1:2] == ["--run"]
+if not (len(sys.argv) > 6 and sys.argv[5] == "--" if run else len(sys.argv) == 5) or \
+        not re.fullmatch("[0-9]+", sys.argv[4]):
+    fail("usage: scripts/doc-tables.py REPORT.txt DOC.md NAME COUNT, or --run DOC.md NAME COUNT -- COMMAND [ARG ...]")
+if run:
     doc, name, count, command = sys.argv[2], sys.argv[3], int(sys.argv[4]), sys.argv[6:]
-    report = subprocess.Popen(command, stdout=subprocess.PIPE, text=True)
+    read(doc)  # readable, before the report runs (minutes, some of them)
+    try:
+        report = subprocess.Popen(command, stdout=subprocess.PIPE, text=True)
+    except OSError as e:
+        fail("%s: cannot run it: %s" % (command[0], e.strerror or e))
     text = ""
     for line in report.stdout:
         sys.stdout.write(line)
@@ -22,9 +45,9 @@ if sys.argv[1] == "--run":
         sys.exit(report.returncode)
 else:
     doc, name, count = sys.argv[2], sys.argv[3], int(sys.argv[4])
-    text = open(sys.argv[1]).read()
+    text = read(sys.argv[1])
+page = read(doc)
 tables = [t.strip() for t in re.findall(r"((?:^\|.*\n)+)", text, re.M)]
-page = open(doc).read()
 if len(tables) != count:
     sys.exit(f"{name}: {len(tables)} tables printed, {count} expected; {doc} left as it was")
 for n, table in enumerate(tables, 1):

@@ -31,7 +31,20 @@ import subprocess
 import sys
 import tempfile
 
+
+def fail(message):
+    """A bad argument: one line, exit 2, before anything is made."""
+    print("format-report: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+if not 3 <= len(sys.argv) <= 4 or sys.argv[3:] not in ([], ["--bump"]):
+    fail("usage: scripts/format-report.py SHADETLM ROOT [--bump]")
 BIN, ROOT = sys.argv[1], sys.argv[2]
+if not (os.path.isfile(BIN) and os.access(BIN, os.X_OK)):
+    fail("%s: no such program (the shadetlm binary, e.g. build/app/shadetlm)" % BIN)
+if not os.path.isdir(os.path.join(ROOT, "scenes")):
+    fail("%s: not the checkout (it has no scenes/)" % ROOT)
 BUMP = "--bump" in sys.argv[3:]
 TMP = tempfile.mkdtemp(prefix="formats-")
 # (label, block, the settings it runs under, in its float32 baseline too)
@@ -62,7 +75,7 @@ def render(scene, sets, tag):
     renders += 1
     out = os.path.join(TMP, tag + ".exr")
     stats = os.path.join(TMP, tag + ".json")
-    args = [BIN, "render", scene, "-o", out, "--stats", stats, "--allow-nonfinite"]  # counted in the stats
+    args = [BIN, "render", scene, "-o", out, "--stats", stats, "--allow-nonfinite", "--allow-overflow"]  # counted in the stats
     for s in sets:
         args += ["--set", s]
     subprocess.run(args, check=True, stdout=subprocess.DEVNULL)

@@ -12,7 +12,22 @@ import os
 import subprocess
 import sys
 
+
+def fail(message):
+    """A bad argument: one line, exit 2, before anything is made."""
+    print("golden-accuracy: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+if len(sys.argv) != 4:
+    fail("usage: scripts/golden-accuracy.py SHADETLM ROOT WORKDIR")
 BIN, ROOT, WORK = sys.argv[1:4]
+if not (os.path.isfile(BIN) and os.access(BIN, os.X_OK)):
+    fail("%s: no such program (the shadetlm binary, e.g. build/app/shadetlm)" % BIN)
+if not os.path.isdir(os.path.join(ROOT, "golden")):
+    fail("%s: not the checkout (it has no golden/)" % ROOT)
+if not os.path.isdir(WORK):
+    fail("%s: no such folder (the frames' and stats' scratch folder)" % WORK)
 
 
 def figure(x):

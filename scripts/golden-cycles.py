@@ -18,12 +18,21 @@ def accepted_at(rev, path):
     return json.loads(text)["frame_cycles"]
 
 
+def fail(message):
+    print("golden-cycles: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
 def main():
     if len(sys.argv) != 2:
-        sys.exit(__doc__)
+        fail("usage: scripts/golden-cycles.py REV")
     rev = sys.argv[1]
-    root = pathlib.Path(subprocess.run(["git", "rev-parse", "--show-toplevel"], capture_output=True, text=True,
-                                       check=True).stdout.strip())
+    top = subprocess.run(["git", "rev-parse", "--show-toplevel"], capture_output=True, text=True)
+    if top.returncode != 0:
+        fail("not in a git checkout: " + (top.stderr.strip().splitlines() or ["git rev-parse failed"])[-1])
+    if subprocess.run(["git", "rev-parse", "--verify", "--quiet", rev + "^{commit}"], capture_output=True).returncode != 0:
+        fail("%r: no such git revision" % rev)
+    root = pathlib.Path(top.stdout.strip())
     print("| scene | configuration | cycles then | cycles now | change |")
     print("|---|---|---:|---:|---:|")
     for stats in sorted((root / "golden").glob("*/stats*.json")):

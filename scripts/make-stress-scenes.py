@@ -11,8 +11,15 @@ import math
 import os
 import sys
 
+if len(sys.argv) > 2:
+    print("make-stress-scenes: usage: scripts/make-stress-scenes.py [OUT_DIR]", file=sys.stderr)
+    sys.exit(2)
 OUT = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes", "stress")
-os.makedirs(os.path.join(OUT, "assets"), exist_ok=True)
+try:
+    os.makedirs(os.path.join(OUT, "assets"), exist_ok=True)
+except OSError as e:
+    print("make-stress-scenes: %s: cannot make it: %s" % (os.path.join(OUT, "assets"), e.strerror or e), file=sys.stderr)
+    sys.exit(2)
 LIGHTS = [{"type": "directional", "direction": [-0.3, -0.4, -1.0]},
           {"type": "point", "position": [0.5, 0.8, 1.5], "intensity": 0.5}]
 

@@ -105,6 +105,7 @@ def identifiers():
 
 def main():
     ap = argparse.ArgumentParser()
+    ap.error = lambda message: fail("arguments", message)  # one line, exit 2 (no usage block)
     ap.add_argument("pipeline")
     ap.add_argument("rtl")
     ap.add_argument("out")

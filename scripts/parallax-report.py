@@ -4,13 +4,30 @@ map, `shadetlm precompute` on maps of three sizes, renders heat maps, prints Mar
 import json
 import math
 import os
+import re
 import struct
 import subprocess
 import sys
 import zlib
 
+
+def fail(message):
+    """A bad argument: one line, exit 2, before anything is made."""
+    print("parallax-report: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+if len(sys.argv) < 3:
+    fail("usage: scripts/parallax-report.py SHADETLM ROOT [NAME=HEIGHT_MAP.png ...]")
 shadetlm, root = sys.argv[1], sys.argv[2]
 reals = [a for a in sys.argv[3:] if a]  # real height maps: "NAME=PATH"
+if not (os.path.isfile(shadetlm) and os.access(shadetlm, os.X_OK)):
+    fail("%s: no such program (the shadetlm binary, e.g. build/app/shadetlm)" % shadetlm)
+if not os.path.isdir(os.path.join(root, "scenes")):
+    fail("%s: not the checkout (it has no scenes/)" % root)
+for entry in reals:
+    if not re.fullmatch(r"[^=\s][^=]*=.+", entry) or not os.path.isfile(entry.split("=", 1)[1]):
+        fail("%r: a real height map is NAME=PATH, PATH an image file" % entry)
 out = os.path.join(root, "out", "parallax")
 os.makedirs(out, exist_ok=True)
 MARGINS = [0.25, 0.5, 1.0]  # refined-map margins tried for the headline, smallest safe one wins

@@ -8,12 +8,15 @@ read (the families that read any). Also OUT_DIR/index.html, one self-contained p
 every plot and every run, and, printed, the Markdown tables of the Pareto-optimal
 configurations per scene against wall time and against cycles.
 
-Usage: scripts/plot.py SWEEP_CSV OUT_DIR"""
+Usage: scripts/plot.py SWEEP_CSV OUT_DIR
+Exit 2, one line on stderr and nothing drawn: a CSV that cannot be read or is not a
+sweep's, no gnuplot, an OUT_DIR that cannot be made."""
 import base64
 import csv
 import html
 import math
 import os
+import shutil
 import subprocess
 import sys
 
@@ -21,20 +24,53 @@ OPS = ["add", "mul", "div", "sqrt", "rsqrt", "lut", "fetch"]  # `line` is a cost
 ERR_FLOOR = 1e-9  # a run equal to the golden model still needs a place on a log axis
 
 
+def fail(message):
+    print("plot: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
 def load(path):
-    with open(path) as f:
-        rows = list(csv.DictReader(f))
-    for r in rows:
-        r["wall_s"], r["frame_cycles"] = float(r["wall_s"]), float(r["frame_cycles"])
+    """The sweep's rows, their figures as numbers; exits 2 naming the first that is not one."""
+    try:
+        with open(path, newline="") as f:
+            reader = csv.DictReader(f)
+            rows = list(reader)
+    except (OSError, csv.Error, ValueError) as e:  # ValueError: bytes that are not text
+        fail("%s: cannot read it: %s" % (path, e.strerror if isinstance(e, OSError) else e))
+    lacking = [c for c in ["family", "scene", "configuration", "wall_s", "frame_cycles"] + OPS +
+               ["line", "err_rmse", "err_psnr"] if c not in (reader.fieldnames or [])]
+    if lacking:
+        fail("%s: no column %s: not a CSV of scripts/sweep.py" % (path, ", ".join(lacking)))
+    if not rows:
+        fail("%s: no runs" % path)
+
+    for k, r in enumerate(rows, 1):
+        def number(key, kind=float, default=None):
+            """The field as a finite number, not negative (err_psnr: any)."""
+            text = r.get(key) or default
+            try:
+                x = kind(text)
+            except (TypeError, ValueError):
+                x = None
+            if x is None or key != "err_psnr" and (x < 0 or not math.isfinite(x)):
+                fail("%s: row %d: %s is %r, not a count or a figure" % (path, k, key, text))
+            return x
+
+        if None in r.values():
+            fail("%s: row %d has fewer fields than the header" % (path, k))
+        r["wall_s"], r["frame_cycles"] = number("wall_s"), number("frame_cycles")
         # CSVs from before the timing pass have one wall time a run and no spread.
-        for k in ["wall_q1_s", "wall_q3_s", "wall_min_s", "wall_max_s"]:
-            r[k] = float(r.get(k) or r["wall_s"])
-        r["wall_runs"] = int(r.get("wall_runs") or 1)
-        r["ops"] = sum(int(r[op]) for op in OPS)
-        r["bytes"] = 64 * int(r["line"])  # 64-byte lines (docs/pipeline.md)
-        r["err_rmse"] = max(float(r["err_rmse"]), ERR_FLOOR)
-        r["err_psnr"] = float(r["err_psnr"]) if r["err_psnr"] not in ("inf", "nan") else float("inf")
-        r["label"] = label(r)
+        for key in ["wall_q1_s", "wall_q3_s", "wall_min_s", "wall_max_s"]:
+            r[key] = number(key, default=r["wall_s"])
+        r["wall_runs"] = number("wall_runs", int, 1)
+        r["ops"] = sum(number(op, int) for op in OPS)
+        r["bytes"] = 64 * number("line", int)  # 64-byte lines (docs/pipeline.md)
+        r["err_rmse"] = max(number("err_rmse"), ERR_FLOOR)
+        r["err_psnr"] = float("inf") if r["err_psnr"] == "nan" else number("err_psnr")
+        try:
+            r["label"] = label(r)
+        except (KeyError, ValueError):
+            fail("%s: row %d: %r is not a configuration of the %s family" % (path, k, r["configuration"], r["family"]))
     return rows
 
 
@@ -368,7 +404,9 @@ def figure(family, runs, cost_name, axis, path):
         script += panel_script(panel, scene, sruns, cost_name, fr, stairs) + (shared if k == 0 else [])
         script.append(plot_commands(k, cost_name))
     script.append("unset multiplot")
-    subprocess.run(["gnuplot"], input="\n".join(script) + "\n", text=True, check=True)
+    if subprocess.run(["gnuplot"], input="\n".join(script) + "\n", text=True).returncode != 0:
+        print("plot: gnuplot failed drawing %s (its message is above)" % path, file=sys.stderr)
+        sys.exit(1)
 
 
 # ---- Tables: Markdown (printed, for docs/benchmarks.md) and HTML (index.html) ----
@@ -449,9 +487,16 @@ def html_page(rows, plots, path, source):
 
 
 def main():
+    if len(sys.argv) != 3:
+        fail("usage: scripts/plot.py SWEEP_CSV OUT_DIR")
     source, out_dir = sys.argv[1], sys.argv[2]
-    os.makedirs(out_dir, exist_ok=True)
     rows = load(source)
+    if not shutil.which("gnuplot"):
+        fail("no gnuplot on the PATH (scripts/setup.sh gnuplot-nox installs it)")
+    try:
+        os.makedirs(out_dir, exist_ok=True)
+    except OSError as e:
+        fail("%s: the plots' folder cannot be made: %s" % (out_dir, e.strerror or e))
     plots = {}
     for family in sorted(set(r["family"] for r in rows)):
         runs = [r for r in rows if r["family"] == family]

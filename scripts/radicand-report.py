@@ -4,7 +4,7 @@ normalize's amortized operations per pixel with the radicand direct (exact mode)
 forward differences seeded at every packet and once per raster line, per scene; the
 pixels each seed serves; and the span length from which forward differences win.
 
-The counts are the block's own (stats: blocks.normalize.ops, details.seeds and .jumps),
+The counts are the block's own (stats: blocks.normalize.ops, details.seeds, .jumps and .reseeds),
 which testbenches/test_normalize.cpp checks against a counting number type.
 
 Usage: scripts/radicand-report.py SHADETLM ROOT"""
@@ -15,7 +15,20 @@ import subprocess
 import sys
 import tempfile
 
+
+def fail(message):
+    """A bad argument: one line, exit 2, before anything is made."""
+    print("radicand-report: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+if len(sys.argv) != 3:
+    fail("usage: scripts/radicand-report.py SHADETLM ROOT")
 BIN, ROOT = sys.argv[1], sys.argv[2]
+if not (os.path.isfile(BIN) and os.access(BIN, os.X_OK)):
+    fail("%s: no such program (the shadetlm binary, e.g. build/app/shadetlm)" % BIN)
+if not os.path.isdir(os.path.join(ROOT, "scenes")):
+    fail("%s: not the checkout (it has no scenes/)" % ROOT)
 TMP = tempfile.mkdtemp(prefix="radicand-")
 FD = "pipeline.normalize.mode=forward-difference"
 MODES = [("direct", ["pipeline.normalize.mode=exact"]), ("per packet", [FD]),
@@ -45,7 +58,7 @@ with open(os.path.join(TMP, "gaps.json"), "w") as f:
 def normalize_stats(scene, sets):
     stats = os.path.join(TMP, "s.json")
     cmd = [BIN, "render", os.path.join(ROOT, scene), "--engine", "loop", "-o", os.path.join(TMP, "f.exr"), "--stats", stats,
-           "--allow-nonfinite"]  # counted below
+           "--allow-nonfinite", "--allow-overflow"]  # counted below
     for s in sets:
         cmd += ["--set", s]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
@@ -58,7 +71,7 @@ def per_pixel(b):
     return pixels, ops["mul"] / pixels, ops["add"] / pixels, (ops["sqrt"] + ops["div"] + ops["rsqrt"]) / pixels
 
 
-print("| scene | pixels | pixels a packet | pixels a line seed (jumps) | mul / px: direct, per packet, per line "
+print("| scene | pixels | pixels a packet | pixels a line seed (jumps, re-seeds) | mul / px: direct, per packet, per line "
       "| add / px: direct, per packet, per line | roots / px: direct, per packet, per line | non-finite normals: direct, per packet, per line |")
 print("|---|---:|---:|---:|---|---|---|---|")
 samples = []  # (pixels, seeds, direct ops, per-packet ops) per scene
@@ -69,8 +82,8 @@ for label, scene, sets in SCENES:
     if pixels == 0:
         continue
     packet, line = b["per packet"]["details"], b["per line"]["details"]
-    print("| %s | %d | %.2f | %.2f (%d) | %.2f, %.2f, %.2f | %.2f, %.2f, %.2f | %.2f, %.2f, %.2f | %s |" % (
-        label, pixels, pixels / packet["seeds"], pixels / line["seeds"], line["jumps"],
+    print("| %s | %d | %.2f | %.2f (%d, %d) | %.2f, %.2f, %.2f | %.2f, %.2f, %.2f | %.2f, %.2f, %.2f | %s |" % (
+        label, pixels, pixels / packet["seeds"], pixels / line["seeds"], line["jumps"], line.get("reseeds", 0),
         f["direct"][1], f["per packet"][1], f["per line"][1], f["direct"][2], f["per packet"][2], f["per line"][2],
         f["direct"][3], f["per packet"][3], f["per line"][3],
         ", ".join(str(b[m]["numbers"]["nonfinite"]) for m in ("direct", "per packet", "per line"))))

@@ -15,7 +15,10 @@ REGEN_GOLDEN=1 rewrites the frames and stats that fail or are missing (never und
 --shard I/N measures every N-th configuration from the I-th into OUT/shards/regress-I-of-N.json
 (a Slurm array task of scripts/slurm.py, which writes OUT/manifest.json with N); --merge
 writes the report (and does what REGEN asks) from all N shards, once all are there (else
-it exits 2 naming the missing ones). OUT/rows.json holds every row the report shows."""
+it exits 2 naming the missing ones). OUT/rows.json holds every row the report shows.
+Exit 0 when every configuration passes, 1 when one fails (a render that fails is a failing
+row), 2 with one line on stderr naming it and nothing written: a bad option, a missing
+program, checkout or scene, a golden.json or shard that cannot be read."""
 import argparse
 import html
 import json
@@ -27,7 +30,13 @@ import sys
 
 import shards
 
-parser = argparse.ArgumentParser(description="golden-image regression: see the module's docstring")
+
+class Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line, exit 2 (no usage block)
+        shards.fail(message)
+
+
+parser = Parser(description="golden-image regression: see the module's docstring")
 parser.add_argument("bin")
 parser.add_argument("root")
 parser.add_argument("out")
@@ -42,7 +51,10 @@ LAYERS = [("RGB", "rgb"), ("A", "rgb"), ("Z", "z"), ("N", "n")]  # A (coverage) 
 
 
 def run(cmd):
-    return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, errors="replace")
+    except OSError as e:
+        shards.fail("%s: cannot run it: %s" % (BIN, e.strerror or e))
 
 
 def figure(x):
@@ -50,8 +62,11 @@ def figure(x):
 
 
 def cycles_of(stats):
+    """The timing a row accepts: the frame's cycles, and per block its busy cycles and its
+    last hand-over (a latency that the frame's end hides still moves the block's last)."""
     return {"frame_cycles": stats["frame_cycles"],
-            "busy_cycles": {b: v["busy_cycles"] for b, v in stats["blocks"].items()}}
+            "busy_cycles": {b: v["busy_cycles"] for b, v in stats["blocks"].items()},
+            "last_cycle": {b: v["last_cycle"] for b, v in stats["blocks"].items()}}
 
 
 def within(now, then, tolerance):
@@ -64,16 +79,43 @@ def moved_blocks(now, then, tolerance):
             if b not in now or b not in then or not within(now[b], then[b], tolerance)]
 
 
+def number(x):
+    return type(x) in (int, float)
+
+
+def check_spec(path, spec):
+    """golden.json as measure() reads it; exits 2 naming what it lacks."""
+    def gate(a):
+        return isinstance(a, dict) and all(number(a[k]) for k in ("rgb_min_psnr", "rgb_max") if k in a)
+    try:
+        configs = spec.get("configurations", {})
+        ok = gate(spec["accuracy"]) and all(number(spec["regression"][k]) for k in ("rgb", "z", "n")) and \
+            number(spec["cycles"]["tolerance"]) and isinstance(configs, dict) and \
+            all(isinstance(c["set"], list) and all(isinstance(x, str) for x in c["set"]) and gate(c["accuracy"])
+                for c in configs.values())
+    except (AttributeError, KeyError, TypeError):
+        ok = False
+    if not ok:
+        shards.fail("%s: not a golden.json: it needs accuracy, regression (rgb, z, n), cycles.tolerance and for each "
+                    "configuration set (a list) and accuracy, with numbers (docs/regression.md)" % path)
+
+
 def configurations():
-    """(scene, configuration, its --set list, its accuracy gate, the scene's golden.json) in order."""
+    """(scene, configuration, its --set list, its accuracy gate, the scene's golden.json) in
+    order; exits 2 naming a golden.json that cannot be read."""
     out = []
     scenes = sorted(d for d in os.listdir(os.path.join(ROOT, "golden"))
                     if os.path.isfile(os.path.join(ROOT, "golden", d, "golden.json")))
     for scene in scenes:
         if ONLY and scene not in ONLY:
             continue
-        with open(os.path.join(ROOT, "golden", scene, "golden.json")) as f:
-            spec = json.load(f)
+        path = os.path.join(ROOT, "golden", scene, "golden.json")
+        try:
+            with open(path) as f:
+                spec = json.load(f)
+        except (OSError, ValueError) as e:
+            shards.fail("%s: cannot read it: %s" % (path, e.strerror if isinstance(e, OSError) else e))
+        check_spec(path, spec)
         out.append((scene, "default", [], spec["accuracy"], spec))
         for name, c in spec.get("configurations", {}).items():
             out.append((scene, name, c["set"], c["accuracy"], spec))
@@ -105,13 +147,22 @@ def measure(scene, config, sets, accuracy, spec):
     if r.returncode != 0:
         row["accuracy_problems"].append("render failed: " + r.stderr.strip())
         return row
-    with open(new_stats) as f:
-        stats = json.load(f)
-    # Accuracy against the golden model.
-    err = stats["error"]["rgb"]
-    row["accuracy"] = {"max": figure(err["max"]), "frame_max": figure(err["frame"]["max"]),
-                       "psnr": figure(err["psnr"]), "pixels": err["pixels"],
-                       "truth": stats["error"]["truth"], "gate": accuracy}
+    try:
+        with open(new_stats) as f:
+            stats = json.load(f)
+        # Accuracy against the golden model.
+        err = stats["error"]["rgb"]
+        row["accuracy"] = {"max": figure(err["max"]), "frame_max": figure(err["frame"]["max"]),
+                           "psnr": figure(err["psnr"]), "pixels": int(err["pixels"]),
+                           "truth": dict(stats["error"]["truth"]), "gate": accuracy}
+        now = cycles_of(stats)
+        if not number(now["frame_cycles"]) or not all(number(v) for v in now["busy_cycles"].values()):
+            raise TypeError("cycles that are not numbers")
+    except (OSError, ValueError, KeyError, TypeError, AttributeError) as e:
+        row.pop("accuracy", None)
+        row["accuracy_problems"].append("render failed: its stats cannot be read (%s: %s): is %s this checkout's "
+                                        "shadetlm?" % (type(e).__name__, e, BIN))
+        return row
     # Written so that NaN fails.
     if "rgb_min_psnr" in accuracy and not figure(err["psnr"]) >= accuracy["rgb_min_psnr"]:
         row["accuracy_problems"].append("accuracy: PSNR %.1f dB below %.1f" % (figure(err["psnr"]), accuracy["rgb_min_psnr"]))
@@ -142,23 +193,33 @@ def measure(scene, config, sets, accuracy, spec):
                 frame_ok = False
                 row["problems"].append("%s: %.3g %% of the frame's pixels over %g (largest: %.3g)" % (
                     layer, m["over_percent"], spec["regression"][key], figure(m["frame"]["max"])))
-    # Cycles against the accepted stats.
-    now = cycles_of(stats)
+    # Cycles against the accepted stats (unreadable ones fail the row, and REGEN_GOLDEN=1 rewrites them).
     row["cycles"] = {"now": now["frame_cycles"], "then": None, "tolerance": spec["cycles"]["tolerance"], "moved": []}
     cycles_ok = os.path.exists(accepted_stats)
     if cycles_ok:
-        with open(accepted_stats) as f:
-            then = json.load(f)
+        try:
+            with open(accepted_stats) as f:
+                then = json.load(f)
+            if not number(then["frame_cycles"]) or not all(number(v) for v in then["busy_cycles"].values()) \
+                    or not all(number(v) for v in then["last_cycle"].values()):
+                raise TypeError("cycles that are not numbers")
+        except (OSError, ValueError, KeyError, TypeError, AttributeError) as e:
+            cycles_ok = False
+            row["problems"].append("unreadable accepted stats %s (%s: %s)" % (
+                os.path.relpath(accepted_stats, ROOT), type(e).__name__, e))
+    if cycles_ok:
         row["cycles"]["then"] = then["frame_cycles"]
         tol = spec["cycles"]["tolerance"]
+        moved_last = moved_blocks(now["last_cycle"], then["last_cycle"], tol)
         cycles_ok = within(now["frame_cycles"], then["frame_cycles"], tol) and \
             set(now["busy_cycles"]) == set(then["busy_cycles"]) and \
-            all(within(v, then["busy_cycles"][b], tol) for b, v in now["busy_cycles"].items())
+            all(within(v, then["busy_cycles"][b], tol) for b, v in now["busy_cycles"].items()) and not moved_last
         row["cycles"]["moved"] = moved_blocks(now["busy_cycles"], then["busy_cycles"], tol)
         if not cycles_ok:
-            row["problems"].append("cycles: %d now, %d accepted (tolerance %g)" % (
-                now["frame_cycles"], then["frame_cycles"], tol))
-    else:
+            row["problems"].append("cycles: %d now, %d accepted (tolerance %g)%s" % (
+                now["frame_cycles"], then["frame_cycles"], tol,
+                "".join("; %s's last hand-over %s now, %s accepted" % (b, n, t) for b, t, n in moved_last)))
+    elif not os.path.exists(accepted_stats):
         row["problems"].append("no accepted stats " + os.path.relpath(accepted_stats, ROOT))
     # What REGEN_GOLDEN=1 rewrites for this row (the report's accept commands).
     row["files"] = [os.path.relpath(p, ROOT) for p, ok in ((accepted, frame_ok), (accepted_stats, cycles_ok)) if not ok]
@@ -199,36 +260,67 @@ def state(r):
     return "fail" if failing(r) else "rewritten" if r.get("regenerated") else "ok"
 
 
+def read_shard(path):
+    """A shard's rows (measure's); exits 2 naming a shard that is not one."""
+    try:
+        with open(path) as f:
+            measured = json.load(f)
+    except (OSError, ValueError) as e:
+        shards.fail("%s: cannot read the shard: %s" % (path, e.strerror if isinstance(e, OSError) else e))
+    kinds = {"scene": str, "config": str, "sets": list, "problems": list, "accuracy_problems": list, "files": list,
+             "layers": dict, "tolerance": dict}
+    if not isinstance(measured, list) or not all(isinstance(r, dict) and all(isinstance(r.get(k), t) for k, t in kinds.items())
+                                                 for r in measured):
+        shards.fail("%s: not a shard of regress.py: a list of rows with %s" % (path, ", ".join(kinds)))
+    return measured
+
+
 rows, changed = [], []
+if sum(map(bool, (ARGS.shard, ARGS.merge, ARGS.list))) > 1:
+    parser.error("--shard, --merge and --list exclude each other")
+if not os.path.isdir(os.path.join(ROOT, "golden")):
+    shards.fail("%s: not the checkout (it has no golden/)" % ROOT)
 unknown = [s for s in ONLY if not os.path.isfile(os.path.join(ROOT, "golden", s, "golden.json"))]
 if unknown:
-    print("regress: no golden scene named %s (golden/<scene>/golden.json)" % ", ".join(unknown), file=sys.stderr)
-    sys.exit(2)
+    shards.fail("no golden scene named %s (golden/<scene>/golden.json)" % ", ".join(unknown))
 if ARGS.list:
     print(len(configurations()))
     sys.exit(0)
 if ARGS.shard:
     shard, count = shards.parse(ARGS.shard)
-    measured = [measure(*c) for c in shards.mine(configurations(), shard, count)]
+if not ARGS.merge:  # the runs need the program, and a folder for the report
+    if not (os.path.isfile(BIN) and os.access(BIN, os.X_OK)):
+        shards.fail("%s: no such program (the shadetlm binary, e.g. build/app/shadetlm)" % BIN)
+    run([BIN, "--version"])  # exits 2 when it cannot be run at all, before anything is made
+    todo = configurations()
+    if os.path.exists(OUT) and not os.path.isdir(OUT):
+        shards.fail("%s: not a folder (the report's)" % OUT)
+    try:
+        os.makedirs(OUT, exist_ok=True)
+    except OSError as e:
+        shards.fail("%s: the report's folder cannot be made: %s" % (OUT, e.strerror or e))
+if ARGS.shard:
+    measured = [measure(*c) for c in shards.mine(todo, shard, count)]
     shards.write_atomically(shards.shard_path(OUT, "regress", shard, count, "json"), json.dumps(measured))
     sys.exit(0)
 if ARGS.merge:
+    if shards.manifest(OUT)["kind"] != "regress":
+        shards.fail("%s holds a sweep, not a regression" % OUT)
     for path in shards.collect(OUT, "regress", "json"):
-        with open(path) as f:
-            rows += json.load(f)
+        rows += read_shard(path)
     order = {(c[0], c[1]): k for k, c in enumerate(configurations())}  # a local run's order
     rows.sort(key=lambda r: order.get((r["scene"], r["config"]), len(order)))
     for r in rows:
         regenerate(r)
         tell(r)
 else:
-    for c in configurations():
+    for c in todo:
         rows.append(measure(*c))
         regenerate(rows[-1])
         tell(rows[-1])
 
 if ONLY and not rows:
-    sys.exit("regress: no golden scene named " + ", ".join(ONLY))
+    shards.fail("no golden scene named " + ", ".join(ONLY))
 # The report (docs/regression.md, "The report"): failures first, then rewritten rows, then the
 # rest, each scene's configurations in golden.json's order.
 failed = [r for r in rows if failing(r)]

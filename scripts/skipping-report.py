@@ -12,7 +12,20 @@ import subprocess
 import sys
 import tempfile
 
+
+def fail(message):
+    """A bad argument: one line, exit 2, before anything is made."""
+    print("skipping-report: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+if not 3 <= len(sys.argv) <= 4 or sys.argv[3:] not in ([], ["--doc"]):
+    fail("usage: scripts/skipping-report.py SHADETLM ROOT [--doc]")
 BIN, ROOT = sys.argv[1], sys.argv[2]
+if not (os.path.isfile(BIN) and os.access(BIN, os.X_OK)):
+    fail("%s: no such program (the shadetlm binary, e.g. build/app/shadetlm)" % BIN)
+if not os.path.isdir(os.path.join(ROOT, "scenes")):
+    fail("%s: not the checkout (it has no scenes/)" % ROOT)
 TMP = tempfile.mkdtemp(prefix="skipping-")
 
 

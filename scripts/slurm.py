@@ -20,8 +20,9 @@ RESULTS/index.html, as a local run would. Unless --shards says, the shards are a
 4 per CPU of the partition (so that uneven shards even out), at most one per run and at
 most the cluster's MaxArraySize. resubmit runs again the shards whose results are missing
 (failed, cancelled, timed out) and the merge. --wait stays until the merge job ended and
-exits with its status. Exit 2: no Slurm, no controller, a results folder that cannot be
-used, or (merge) shards missing; nothing is half-merged.
+exits with its status. Exit 2, with one line on stderr: a bad option, no Slurm, no
+controller, a results folder that cannot be used, a manifest that is not what submit
+wrote, or (merge) shards missing; nothing is half-merged.
 The program is SHADETLM if set, else build/app/shadetlm; the checkout (scripts, scenes)
 must be on the shared filesystem too."""
 import argparse
@@ -49,6 +50,17 @@ def die(message):
     sys.exit(2)
 
 
+def last_line(text):
+    """A tool's message in one line: its last (Slurm's tools end with the fatal one)."""
+    lines = [line.strip() for line in text.splitlines() if line.strip()]
+    return lines[-1] if lines else "no message"
+
+
+class Parser(argparse.ArgumentParser):
+    def error(self, message):  # one line, exit 2 (no usage block)
+        die(message)
+
+
 def slurm(*args, timeout=60):
     """A Slurm command's output; exits 2 with its message when it fails."""
     try:
@@ -56,7 +68,7 @@ def slurm(*args, timeout=60):
     except subprocess.TimeoutExpired:
         die("%s took over %d s: is the Slurm controller reachable?" % (" ".join(args), timeout))
     if r.returncode != 0:
-        die("%s failed (exit %d): %s" % (" ".join(args), r.returncode, r.stderr.strip() or r.stdout.strip()))
+        die("%s failed (exit %d): %s" % (" ".join(args), r.returncode, last_line(r.stderr or r.stdout)))
     return r.stdout
 
 
@@ -139,7 +151,7 @@ def count_work(kind, binary, results, args):
     cmd = ["python3", script(kind), binary, ROOT] + (["--list"] if kind == "sweep" else [results, "--list"]) + args
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     if r.returncode != 0:
-        die("counting the runs failed: " + r.stderr.strip())
+        die("counting the runs failed: " + last_line(r.stderr))
     return int(r.stdout)
 
 
@@ -208,10 +220,13 @@ def queued(job_ids):
     (finished longer ago than MinJobAge) is no longer queued: squeue calls its id invalid."""
     if not job_ids:
         return []
-    r = subprocess.run(["squeue", "-h", "-o", "%i %T", "-j", ",".join(job_ids)], stdout=subprocess.PIPE,
-                       stderr=subprocess.PIPE, text=True, timeout=60)
+    try:
+        r = subprocess.run(["squeue", "-h", "-o", "%i %T", "-j", ",".join(job_ids)], stdout=subprocess.PIPE,
+                           stderr=subprocess.PIPE, text=True, timeout=60)
+    except subprocess.TimeoutExpired:
+        die("squeue took over 60 s: is the Slurm controller reachable?")
     if r.returncode != 0 and "Invalid job id" not in r.stderr:
-        die("squeue failed (exit %d): %s" % (r.returncode, r.stderr.strip()))
+        die("squeue failed (exit %d): %s" % (r.returncode, last_line(r.stderr)))
     return [line.split() for line in r.stdout.splitlines() if line.strip()]
 
 
@@ -236,11 +251,28 @@ def extension(m):
 
 
 def submission(results):
-    """The manifest of a folder scripts/slurm.py submitted; exits 2 for another's."""
+    """The manifest of a folder scripts/slurm.py submitted; exits 2 for another's, or for
+    one whose fields are not of the types submit writes."""
     m = shards.manifest(results)
     if not all(k in m for k in ("program", "jobs", "args", "runs", "repeats")):
         die("%s was not submitted by scripts/slurm.py (scripts/sweep.sh writes its own shards): "
             "nothing to do here" % results)
+
+    def count(x, least):
+        return type(x) is int and x >= least
+
+    def job_id(x):
+        return x is None or isinstance(x, str) and x != ""
+
+    checks = [("program", isinstance(m["program"], str)), ("runs", count(m["runs"], 1)), ("repeats", count(m["repeats"], 0)),
+              ("max_parallel", m.get("max_parallel") is None or count(m["max_parallel"], 1)),
+              ("sbatch", isinstance(m.get("sbatch", []), list) and all(isinstance(x, str) for x in m.get("sbatch", []))),
+              ("jobs", isinstance(m["jobs"], list) and all(
+                  isinstance(j, dict) and job_id(j.get("array")) and job_id(j.get("merge")) and j.get("merge") for j in m["jobs"]))]
+    bad = [name for name, ok in checks if not ok]
+    if bad:
+        die("%s: the manifest's %s %s not what scripts/slurm.py submit writes" % (
+            os.path.join(results, "manifest.json"), ", ".join(bad), "is" if len(bad) == 1 else "are"))
     return m
 
 
@@ -337,8 +369,8 @@ def resubmit(a, sbatch_args):
     except FileNotFoundError:
         pass
     # The partition of the submission stays; other sbatch arguments may be given anew.
-    partition = [x for x in m["sbatch"] if x.startswith("--partition=")]
-    submit_jobs(results, m, gone, partition + sbatch_args if sbatch_args else m["sbatch"])
+    partition = [x for x in m.get("sbatch", []) if x.startswith("--partition=")]
+    submit_jobs(results, m, gone, partition + sbatch_args if sbatch_args else m.get("sbatch", []))
     if a.wait:
         wait(results, m)
 
@@ -376,7 +408,7 @@ def main():
     argv = sys.argv[1:]
     sbatch_args = argv[argv.index("--") + 1:] if "--" in argv else []
     argv = argv[:argv.index("--")] if "--" in argv else argv
-    parser = argparse.ArgumentParser(description="sweeps and regressions as Slurm job arrays (see the docstring)")
+    parser = Parser(description="sweeps and regressions as Slurm job arrays (see the docstring)")
     sub = parser.add_subparsers(dest="command", required=True)
     s = sub.add_parser("submit")
     s.add_argument("kind", choices=["sweep", "regress"])
@@ -397,8 +429,9 @@ def main():
     r.add_argument("--wait", action="store_true")
     a = parser.parse_args(argv)
     if a.command == "submit":
-        if a.shards is not None and a.shards < 1 or a.max_parallel is not None and a.max_parallel < 1 or a.repeats < 0:
-            die("--shards, --max-parallel and --repeats take positive counts")
+        if a.shards is not None and not 1 <= a.shards <= shards.MAX_SHARDS or \
+                a.max_parallel is not None and a.max_parallel < 1 or not 0 <= a.repeats <= 1000:
+            die("--shards (1 to %d), --max-parallel (1 or more) and --repeats (0 to 1000) take counts" % shards.MAX_SHARDS)
         if a.kind == "regress" and (a.match or a.resolution or a.map_cache or a.repeats):
             die("--match, --resolution, --map-cache and --repeats are the sweep's; the regression takes --scene")
         if a.kind == "sweep" and a.scene:
@@ -416,4 +449,4 @@ def main():
         sys.exit(merge(a))
 
 
-main()
+shards.run_main(main)

@@ -14,8 +14,24 @@ import subprocess
 import sys
 import tempfile
 
+
+def fail(message):
+    """A bad argument: one line, exit 2, before anything is made."""
+    print("stability-report: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+if len(sys.argv) != 4:
+    fail("usage: scripts/stability-report.py SHADETLM ROOT OUT")
 BIN, ROOT, OUT = sys.argv[1], sys.argv[2], sys.argv[3]
-os.makedirs(OUT, exist_ok=True)
+if not (os.path.isfile(BIN) and os.access(BIN, os.X_OK)):
+    fail("%s: no such program (the shadetlm binary, e.g. build/app/shadetlm)" % BIN)
+if not os.path.isdir(os.path.join(ROOT, "scenes")):
+    fail("%s: not the checkout (it has no scenes/)" % ROOT)
+try:
+    os.makedirs(OUT, exist_ok=True)
+except OSError as e:
+    fail("%s: the plots' folder cannot be made: %s" % (OUT, e.strerror or e))
 TMP = tempfile.mkdtemp(prefix="stability-")
 MODES = ["none", "line", "tile32", "tile16", "tile8"]
 # The walker's formats: float16 and fixed point of 16 and 24 bits (N/w of these scenes
@@ -28,7 +44,7 @@ def error(scene, scale, mode, fmt):
     stats = os.path.join(TMP, "s.json")
     subprocess.run([BIN, "render", os.path.join(ROOT, "scenes/stress", scene), "-o", os.path.join(TMP, "f.exr"),
                     "--stats", stats, "--compare-reference", "--set", "pipeline.normal_interp.reseed=" + mode,
-                    "--set", "pipeline.normal_interp.format=" + fmt,
+                    "--set", "pipeline.normal_interp.format=" + fmt, "--allow-overflow",
                     "--set", 'objects.0.transform={"scale":[%r,%r,1]}' % scale], check=True, stdout=subprocess.DEVNULL)
     with open(stats) as f:
         s = json.load(f)

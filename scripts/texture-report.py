@@ -16,8 +16,23 @@ import subprocess
 import sys
 import tempfile
 
+
+def fail(message):
+    """A bad argument: one line, exit 2, before anything is made."""
+    print("texture-report: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+if len(sys.argv) not in (3, 5) or len(sys.argv) == 5 and sys.argv[3] != "--images":
+    fail("usage: scripts/texture-report.py SHADETLM_BINARY PHOTO_PNG_OR_EMPTY [--images DIR]")
 BIN, PHOTO = sys.argv[1], sys.argv[2]
-IMAGES = sys.argv[sys.argv.index("--images") + 1] if "--images" in sys.argv else None
+IMAGES = sys.argv[4] if len(sys.argv) == 5 else None
+if not (os.path.isfile(BIN) and os.access(BIN, os.X_OK)):
+    fail("%s: no such program (the shadetlm binary, e.g. build/app/shadetlm)" % BIN)
+if PHOTO and not os.path.isfile(PHOTO):
+    fail("%s: no such file (the photograph; \"\" for none)" % PHOTO)
+if IMAGES is not None and (not IMAGES or os.path.exists(IMAGES) and not os.path.isdir(IMAGES)):
+    fail("--images %r: not a folder (the previews'; made when missing)" % IMAGES)
 TMP = tempfile.mkdtemp(prefix="texture-report-")
 ARITH = ["add", "mul", "div", "sqrt", "rsqrt", "lut"]
 CONFIGS = [("object space (texel_project)", "texture-object", None, 4),

@@ -61,16 +61,32 @@ def read_vcd(path):
     return seen, stalled[0]
 
 
+def fail(message):
+    """A bad argument or file: one line, exit 2."""
+    print("vcd-causality: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
 def main():
     if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    seen, stalled = read_vcd(sys.argv[1])
-    stats = json.load(open(sys.argv[2]))
-    period_ps = 1e6 / stats["clock_mhz"]
-    order = [b for b in stats["elaborated"] if b in seen]
+        fail("usage: scripts/vcd-causality.py TRACE.vcd STATS.json")
+    try:
+        with open(sys.argv[2]) as f:
+            stats = json.load(f)
+        period_ps = 1e6 / stats["clock_mhz"]
+        latency = {b: v["latency"] for b, v in stats["blocks"].items()}
+        elaborated = list(stats["elaborated"])
+    except (OSError, ValueError, KeyError, TypeError, AttributeError, ZeroDivisionError) as e:
+        fail("%s: not the stats of a render (render --stats): %s" % (
+            sys.argv[2], e.strerror if isinstance(e, OSError) else "%s %s" % (type(e).__name__, e)))
+    try:
+        seen, stalled = read_vcd(sys.argv[1])
+    except (OSError, ValueError, StopIteration, IndexError) as e:
+        fail("%s: not a VCD it can read: %s" % (sys.argv[1], e.strerror if isinstance(e, OSError) else type(e).__name__))
+    order = [b for b in elaborated if b in seen and b in latency]
     checked = broken = overtakes = 0
     for a, b in zip(order, order[1:]):
-        need = (1 + stats["blocks"][b]["latency"]) * period_ps
+        need = (1 + latency[b]) * period_ps
         for pixel, t_a in seen[a].items():
             t_b = seen[b].get(pixel)
             if t_b is None:
