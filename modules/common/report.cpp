@@ -41,6 +41,7 @@ nlohmann::json RenderResult::stats_json() const {
                          {"ops", b.stats.ops.to_json()}};
     bj["utilization"] = frame_cycles > 0 ? double(b.stats.busy_cycles) / double(frame_cycles) : 0.0;
     if (frame_cycles > 0) {  // the timing model's (docs/pipeline.md, "Timing")
+      bj["last_cycle"] = b.last_cycle;  // its last hand-over: every latency shows in it
       bj["starved_cycles"] = b.stats.starved_cycles;
       bj["blocked_cycles"] = b.stats.blocked_cycles;
       if (b.timing.fifo_depth > 0) bj["fifo_depth"] = b.timing.fifo_depth;  // none: setup, texel_project
