@@ -37,16 +37,17 @@ std::string cache_name(const core::MapKey& key) {
   return key.at("shadetlm:map") + "-" + h.hex() + ".exr";
 }
 
-// The message of reading the entry at `path` as the map of settings `s` ("" when it reads).
+// What is wrong with the entry at `path` as the map of settings `s` ("" when it reads as
+// one). Only what the entry's own contents cause counts; other failures (memory, the
+// budget, a file that cannot be opened) go on as they are.
 std::string why_unusable(const core::Texture& height, core::ParallaxSettings s, const std::string& path,
                          const std::string& scene_file) {
   s.map_file = path;
   try {
     modules::build_parallax_maps(height, s, scene_file);  // read and checked as the pipeline will
     return "";
-  } catch (const std::bad_alloc&) {
-    throw;
-  } catch (const std::exception& e) {
+  } catch (const core::InputError& e) {
+    if (e.file() != path) throw;  // (the scene's or the height map's trouble, not the entry's)
     return e.what();
   }
 }
@@ -70,15 +71,15 @@ int use_map_cache(core::Scene& scene, const std::string& dir) {
     const core::Texture& height = scene.textures[size_t(m.height_map)];
     const core::MapKey key = modules::parallax_map_key(core::height_field(height, scene.file, "height_map"), s);
     const std::string path = (fs::path(dir) / cache_name(key)).string();
-    if (fs::exists(path)) {
+    bool build = !fs::exists(path);
+    if (!build) {
       if (const std::string why = why_unusable(height, s, path, scene.file); !why.empty()) {
         std::cerr << "shadetlm: warning: " << path << ": a map cache entry that cannot be used (" << why
                   << "); built again\n";
-        fs::remove(path, ec);
-        if (fs::exists(path)) throw core::InputError("--map-cache", path, "a bad entry that cannot be removed: " + why);
+        build = true;  // (written over, by a rename: a run reading it meanwhile keeps a whole file)
       }
     }
-    if (!fs::exists(path)) {
+    if (build) {
       modules::ParallaxMaps maps = modules::build_parallax_maps(height, s, scene.file);
       maps.volume.params["shadetlm:version"] = maps.cone.params["shadetlm:version"] = core::kVersion;
       if (s.method == core::ParallaxMethod::Cone) core::write_cone_map(path, maps.cone);

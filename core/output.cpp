@@ -44,7 +44,16 @@ void unregister_temporary(int slot) {
   slot_taken[slot] = false;
 }
 
+// While an OutputSet renames its files (OutputSet::commit), a signal that another thread
+// takes is held here and raised once the renames are done.
+std::atomic<bool> committing{false};
+std::atomic<int> held_signal{0};
+
 extern "C" void on_signal(int signal) {
+  if (committing) {
+    held_signal = signal;
+    return;
+  }
   for (int i = 0; i < kSlots; ++i)
     if (slot_ready[i]) ::unlink(slot_path[i]);
   std::signal(signal, SIG_DFL);
@@ -238,15 +247,23 @@ SignalsHeld::~SignalsHeld() { ::pthread_sigmask(SIG_SETMASK, &before_, nullptr);
 void OutputSet::commit() {
   for (const auto& f : files_) f->sync();  // a full disk shows before anything is in place
   pause_point("commit");
-  SignalsHeld held;
-  for (size_t i = 0; i < files_.size(); ++i) {
-    try {
-      files_[i]->commit(true);
-    } catch (...) {  // take back what is already in place
-      for (size_t k = 0; k < i; ++k) remove_quietly(files_[k]->output());
-      throw;
+  // No signal between two renames: held back on this thread, and on any other thread
+  // recorded by the handler and raised when the renames are done.
+  {
+    SignalsHeld held;
+    committing = true;
+    for (size_t i = 0; i < files_.size(); ++i) {
+      try {
+        files_[i]->commit(true);
+      } catch (...) {  // take back what is already in place
+        for (size_t k = 0; k < i; ++k) remove_quietly(files_[k]->output());
+        committing = false;
+        throw;
+      }
     }
+    committing = false;
   }
+  if (const int signal = held_signal.exchange(0)) on_signal(signal);
 }
 
 }  // namespace shadetlm::core

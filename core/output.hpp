@@ -34,8 +34,9 @@ void remove_temporaries_on_signals();
 // environment's SHADETLM_PAUSE_AT equals `point`, the process says so on stderr and stops
 // itself (SIGSTOP); the test waits for the stop, signals it and lets it continue. The
 // points: every progress phase ("loading the scene", "pipeline", "golden model",
-// "writing", ...), "pipeline half" and "commit" (every output of the run written to its
-// temporary, none renamed yet).
+// "writing", ...), "pipeline half" (from setup's progress, reported every 64 triangles:
+// a scene of fewer never stops there) and "commit" (the process's first OutputSet commit:
+// for render, every output of the run written to its temporary, none renamed yet).
 void pause_point(const char* point);
 
 // Holds SIGINT, SIGTERM and SIGHUP back on this thread while it lives; they are delivered

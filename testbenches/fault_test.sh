@@ -157,7 +157,7 @@ outputs_of() { (cd "$1" && find . -mindepth 1 -not -name '*.tmp.*' | sort && fin
 # at POINT; false if it ends instead or has not stopped within five minutes.
 start_paused() {
   rm -rf k && cp -a old k
-  (cd k && exec env --default-signal=INT,TERM SHADETLM_PAUSE_AT="$1" "$bin" "${long[@]}") >/dev/null 2>"$tmp/stderr" &
+  (cd k && exec env --default-signal=INT,TERM,HUP SHADETLM_PAUSE_AT="$1" "$bin" "${long[@]}") >/dev/null 2>"$tmp/stderr" &
   background=$!
   local i state
   for ((i = 0; i < 15000; i++)); do
@@ -325,6 +325,16 @@ cp in/g.exr x/a.exr
 cp in/r.exr x/b.exr
 cp in/g.exr x/x.exr
 cp in/g.exr x/h.exr
+cp in/h.png x/t.png
+tex x/t.json h.exr
+python3 - x/t.json <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["textures"]["p"] = {"type": "image", "file": "t.png"}
+s["materials"]["n"] = {"texture": "p"}
+s["objects"].append({"shape": "sphere", "material": "n", "radius": 0.5})
+json.dump(s, open(sys.argv[1], "w"))
+PY
 mkdir x/folder.exr
 echo text >x/plain
 collision() {  # collision NAME "OPTIONS..." COMMAND...: run in x, rejected naming one of OPTIONS
@@ -339,8 +349,10 @@ collision() {  # collision NAME "OPTIONS..." COMMAND...: run in x, rejected nami
   [[ $(snapshot x) == "$before" ]] || problem "the folder changed: now $(contents x)"
   end
 }
-collision output-is-the-scene --output "$bin" render s.json -o s.json
-collision preview-is-the-output "--preview --output" "$bin" render s.json -o x.png --preview x.png  # (the preview must end in .png)
+# (The frame's path ends in .exr and the preview's in .png, so those two cannot collide;
+# an input can: an EXR texture, a PNG texture.)
+collision output-is-a-texture --output "$bin" render t.json -o h.exr
+collision preview-is-a-texture --preview "$bin" render t.json -o out.exr --preview t.png
 collision stats-is-the-output "--stats --output" "$bin" render s.json -o x.exr --stats x.exr
 collision heat-map-is-the-preview "--heat-map --preview" \
   "$bin" render "$parallax" "${small[@]}" -o out.exr --preview x.png --heat-map x.png
@@ -353,8 +365,8 @@ collision stats-is-a-folder --stats "$bin" render s.json -o out.exr --stats fold
 collision output-folder-is-a-file --output "$bin" render s.json -o plain/x.exr
 collision output-empty --output "$bin" render s.json -o ''
 collision rejected-scene-makes-no-folder camera.fov_y "$bin" render s.json --set camera.fov_y=500 -o newdir/x.exr
-collision rejected-collision-makes-no-folder "--preview --output" \
-  "$bin" render s.json -o newdir/x.png --preview newdir/x.png
+collision rejected-collision-makes-no-folder "--stats --output" \
+  "$bin" render s.json -o newdir/x.exr --stats newdir/x.exr
 collision missing-scene-makes-no-folder missing.json "$bin" render missing.json -o newdir/x.exr
 
 echo "$passes passed, $failures failed"

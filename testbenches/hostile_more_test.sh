@@ -837,21 +837,23 @@ hostile precompute-unknown-map "unknown command 'bogusmap'" S precompute bogusma
 # ------------------------------------------------------------------------------------------
 # 5. Outputs: equal to an input, to each other, a folder, under a regular file
 # ------------------------------------------------------------------------------------------
-ln -sf base.json link.json
-hostile -u base.json output-is-scene "--output" S render base.json -o base.json
-hostile -u base.json output-is-scene-dot "--output" S render base.json -o ./base.json
-hostile -u base.json output-is-scene-link "--output" S render base.json -o link.json
+# (Frames must end in .exr: the frame collides with an EXR input, a texture, never the scene.)
+tex exrtex.json h16.exr
+ln -sf h16.exr link.exr
+hostile -u h16.exr output-is-texture "--output" S render exrtex.json -o h16.exr
+hostile -u h16.exr output-is-texture-dot "--output" S render exrtex.json -o ./h16.exr
+hostile -u h16.exr output-is-texture-link "--output" S render exrtex.json -o link.exr
 hostile -u base.json preview-is-scene "--preview" S render base.json -o out.exr --preview base.json
 hostile -u base.json stats-is-scene "--stats" render base.json --stats base.json
 hostile -u base.json timing-log-is-scene "--timing-log" render base.json --timing-log base.json
 hostile -u base.json timeline-is-scene "--timeline" render base.json --timeline base.json
 cp base.json scene.vcd
 hostile -u scene.vcd -a "input" vcd-is-scene "--vcd" render scene.vcd --vcd scene.vcd
-hostile -u base.json reference-output-is-scene "--output" S reference base.json -o base.json
+hostile -u h16.exr reference-output-is-texture "--output" S reference exrtex.json -o h16.exr
 tex rgbtex.json rgb16.png
 hostile -u rgb16.png preview-is-texture "--preview" S render rgbtex.json -o out.exr --preview rgb16.png
 scene tri.json '[{"shape": "mesh", "file": "tri.obj"}]'
-hostile -u tri.obj output-is-mesh "--output" S render tri.json -o tri.obj --preview out.png
+hostile -u tri.obj stats-is-mesh "--stats" S render tri.json -o out.exr --preview out.png --stats tri.obj
 hostile -u pb.json parallax-bench-json-is-scene "--json" S parallax-bench pb.json --rays 2 --elevations 30 --json pb.json
 hostile -u h16.exr normalmap-over-height "--output" S precompute normalmap h16.exr -o h16.exr
 hostile -u h16.png distancemap-over-height "--output" S precompute distancemap h16.png -o h16.png
@@ -861,11 +863,11 @@ hostile -u tri.obj normalmap-over-surface "--output" S precompute normalmap h16.
 hostile -u a.exr compare-diff-is-a "--diff" S compare a.exr b.exr --diff a.exr
 hostile -u b.exr compare-diff-is-b "--diff" S compare a.exr b.exr --diff b.exr
 hostile -u a.exr compare-images-under-file "--images" S compare a.exr b.exr --images a.exr/x
-hostile -x x.png output-equals-preview "--preview" S render base.json -o x.png --preview x.png
+hostile -x x.exr output-equals-timing-log "--timing-log" S render base.json -o x.exr --timing-log x.exr
 hostile -x x.exr output-equals-stats "--stats" S render base.json -o x.exr --stats ./x.exr
 hostile -x x.png preview-equals-heat-map "--heat-map" S render pb.json -o out.exr --preview x.png --heat-map x.png
 hostile -x x.json stats-equals-timeline "--timeline" render base.json --stats x.json --timeline x.json
-hostile -x x.png reference-output-equals-preview "--preview" S reference base.json -o x.png --preview x.png
+hostile -x x.png -x x.exr reference-preview-not-png "--preview" S reference base.json -o x.exr --preview x.exr
 mkdir -p dir.exr dir.png dir.json dir.log
 hostile reference-output-folder "--output" S reference base.json -o dir.exr
 hostile preview-folder "--preview" S render base.json -o out.exr --preview dir.png

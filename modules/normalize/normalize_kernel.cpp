@@ -71,12 +71,16 @@ void NormalizeKernel::process(SpanPacket& p) {
   const bool direct = mode_ == NormalizeMode::ForwardDifference && core::bump_path(t.material->path);
   if (p.count == 0) return;
   start_ = start_of(p, direct);
-  const Start planned = start_;
+  reseed_at_ = -1;
   with_number_type(numbers_, [&](auto zero) { normalize_as<decltype(zero)>(p, direct); });  // (may re-seed)
   if (!direct && mode_ == NormalizeMode::ForwardDifference) {
     if (start_ == Start::Seed) ++seeds_;
-    if (planned == Start::Jump) ++jumps_;
-    if (planned != Start::Seed && start_ == Start::Seed) ++reseeds_;
+    if (start_ == Start::Jump) ++jumps_;
+  }
+  if (reseed_at_ >= 0) {  // the work: a seed's cycle before pixel reseed_at_, and the start's own
+    ++seeds_, ++reseeds_;
+    for (int i = 0; i < p.count; ++i) reseeded_[i] = i == 0 && start_ != Start::Carry ? 2 : 1;
+    ++reseeded_[reseed_at_];
   }
   nonfinite_ += count_nonfinite(p.n, p.count);
   tally_.add(direct ? 1 : 0, p.count);
@@ -85,7 +89,7 @@ void NormalizeKernel::process(SpanPacket& p) {
 Ops NormalizeKernel::ops() const {
   const bool rsqrt_unit = numbers_.format.kind != core::NumberFormat::Kind::Float32;
   return normalize_ops_per_pixel(mode_, rsqrt_unit) * tally_.pixels[0] + normalize_ops_per_span(mode_) * seeds_ +
-         normalize_ops_per_jump() * jumps_ + normalize_ops_per_pixel_direct_rsqrt(rsqrt_unit) * tally_.pixels[1];
+         normalize_ops_per_jump() * jumps_ + Ops{/*add*/ 2} * reseeds_ + normalize_ops_per_pixel_direct_rsqrt(rsqrt_unit) * tally_.pixels[1];
 }
 
 uint64_t NormalizeKernel::word(float v) const {
@@ -143,9 +147,8 @@ void NormalizeKernel::normalize_as(SpanPacket& p, bool direct) {
     state = start_ == Start::Seed ? RadicandState<T>::seed(n0, dh, T(t.c)) : RadicandState<T>{T(line_.r), T(line_.delta)};
     if (start_ == Start::Jump) state.jump(p.x0 - line_.next_x, T(t.c));
   }
-  // A carried radicand that would reach zero or below is dropped: the packet is seeded.
-  bool reseeded = false;
-  bool* guard = carried && start_ != Start::Seed ? &reseeded : nullptr;
+  // A carried radicand that reaches zero or below is dropped there for a seed.
+  int* guard = carried && start_ != Start::Seed ? &reseed_at_ : nullptr;
   if constexpr (std::is_same_v<T, float>) {  // in place, in whole groups of lanes (kLanes) …
     const int count = carried ? p.count : lanes(p.count);  // … but a carried radicand steps to the last pixel only
     normalize_span(p.n[0], p.n[1], p.n[2], count, dh, T(t.c), mode_, direct, carried, guard);
@@ -160,7 +163,6 @@ void NormalizeKernel::normalize_as(SpanPacket& p, bool direct) {
         if constexpr (std::is_same_v<T, Fixed>) raw_out_[c][i] = n[c][i].raw();  // (wider than a float's)
       }
   }
-  if (reseeded) start_ = Start::Seed;  // (its work: a seed's cycle before the first pixel)
   if (carried) line_ = {true, t.id, p.y, p.x0 + p.count, double(state.r), double(state.delta)};
 }
 

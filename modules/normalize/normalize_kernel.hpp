@@ -138,13 +138,14 @@ void normalize_pixels(T* nx, T* ny, T* nz, int count) {
 // from one pixel to the next; c = 2|ΔN_H|².
 // With `direct`, forward-difference mode takes each radicand directly (bump packets).
 // Forward-difference mode starts from `carried` (R and δ at nx[0]) when given, else
-// seeds at nx[0]; it leaves in `carried` the state after the span. With `reseeded`, a
-// carried radicand that reaches zero or below on the span (rounding carried along a long
-// line between near-opposite normals: |N|² itself never does) is dropped, the span seeded
-// at nx[0] instead, and *reseeded set: the guard is the sign bit of each R, a wire.
+// seeds at nx[0]; it leaves in `carried` the state after the span. With `reseed_at`, a
+// carried radicand that reaches zero or below at pixel k (rounding carried along a long
+// line between near-opposite normals: |N|² itself never does) is dropped there and the
+// sequence seeded at N_k instead, once a span, and *reseed_at = k: the guard is R's sign
+// bit, a wire.
 template <class T>
 void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, NormalizeMode mode, bool direct = false,
-                    RadicandState<T>* carried = nullptr, bool* reseeded = nullptr) {
+                    RadicandState<T>* carried = nullptr, int* reseed_at = nullptr) {
   if (mode == NormalizeMode::ForwardDifference && direct)
     return normalize_pixels<NormalizeMode::ForwardDifference>(nx, ny, nz, count);
   if (mode == NormalizeMode::ForwardDifference) {
@@ -154,11 +155,14 @@ void normalize_span(T* nx, T* ny, T* nz, int count, const T dh[3], T c, Normaliz
     // of its own, which vectorizes.
     RadicandState<T> radicands = carried ? *carried : RadicandState<T>::seed(n0, dh, c);
     T r[kSpanMax];
-    for (int i = 0; i < count; ++i) r[i] = radicands.next(c);
-    if (carried && reseeded && std::any_of(r, r + count, [](T v) { return !(v > T(0.0f)); })) {
-      radicands = RadicandState<T>::seed(n0, dh, c);
-      for (int i = 0; i < count; ++i) r[i] = radicands.next(c);
-      *reseeded = true;
+    for (int i = 0; i < count; ++i) {
+      r[i] = radicands.next(c);
+      if (reseed_at && *reseed_at < 0 && !(r[i] > T(0.0f))) {
+        const T ni[3] = {nx[i], ny[i], nz[i]};
+        radicands = RadicandState<T>::seed(ni, dh, c);
+        r[i] = radicands.next(c);
+        *reseed_at = i;
+      }
     }
     if (carried) *carried = radicands;
     for (int i = 0; i < count; ++i) {
@@ -206,15 +210,17 @@ class NormalizeKernel {
   // A pixel a cycle; the forward-difference radicand's seed (R0, δ0: 8 multiplications,
   // 5 additions) or jump (3, 3) takes the multipliers a cycle before the packet's first
   // pixel; a packet that continues its line where the last one ended needs neither.
+  // A re-seed at pixel k (seed=line's guard) takes them a cycle before pixel k.
   Work work(const SpanPacket&) const {
+    if (reseed_at_ >= 0) return Work{reseeded_, 0};
     return mode_ == NormalizeMode::ForwardDifference && start_ != Start::Carry ? Work{seeded_, 0} : Work{nullptr, 1};
   }
   bool bypass(const SpanPacket&) const { return false; }
   NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
   // Pixels and packets normalized (in either engine), (forward-difference mode) radicands
   // seeded (re-seeds included) and jumped, carried radicands dropped for a re-seed
-  // (seed=line: one would have reached zero or below), and the pixels taking the
-  // radicand direct there (bump packets).
+  // (seed=line: one reached zero or below; its R, two additions, computed in vain), and
+  // the pixels taking the radicand direct there (bump packets).
   nlohmann::json details() const {
     return {{"pixels", tally_.pixels[0] + tally_.pixels[1]}, {"packets", tally_.packets[0] + tally_.packets[1]},
             {"seeds", seeds_}, {"jumps", jumps_}, {"reseeds", reseeds_}, {"direct_pixels", tally_.pixels[1]}};
@@ -255,6 +261,8 @@ class NormalizeKernel {
   Line line_;
   uint64_t seeds_ = 0, jumps_ = 0, reseeds_ = 0;  // forward-difference packets seeded, jumped, re-seeded
   uint16_t seeded_[kSpanMax];
+  uint16_t reseeded_[kSpanMax];  // the last packet's work when it was re-seeded (reseed_at_ ≥ 0)
+  int reseed_at_ = -1;           // the pixel the last packet was re-seeded at, or −1
   PacketTally<2> tally_;  // packets of mode_ (0); forward-difference mode's bump packets, radicand direct (1)
   NumberContext numbers_;
   uint64_t nonfinite_ = 0;
