@@ -90,6 +90,15 @@ uint64_t replace_nonfinite(core::Frame& frame);
 int nonfinite_status(uint64_t replaced, bool allowed);
 constexpr int kExitNonfinite = 3;
 
+// The top level's --threads (a count from 1 to 1024; "" one per core) and --compression
+// (an OpenEXR lossless method): checked (InputError naming the option, with the nearest
+// name), then in force for the run: threads() is what the golden model and OpenEXR use.
+void set_threads(const std::string& text);
+void set_compression(const std::string& name);
+int threads();
+// The nearest of `names` to `word`, if near enough to be a typo ("" if none).
+std::string nearest(const std::string& word, const std::vector<std::string>& names);
+
 // An output the command always writes: an empty path is refused.
 void require_output(const std::string& option, const std::string& path);
 

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <filesystem>
+#include <thread>
 #include <iostream>
 
 #include <cctype>
@@ -54,15 +55,7 @@ void add_frame(core::OutputSet& outputs, const core::Frame& frame, const std::st
                const std::string& heat, float heat_max) {
   if (!heat.empty() && !frame.find("parallax.iterations"))
     throw core::InputError("--heat-map", heat, "the frame has no parallax.iterations layer (no parallax material)");
-  if (!exr.empty()) {
-    std::string bytes;
-    try {
-      bytes = core::exr_bytes(frame);
-    } catch (const std::exception& e) {
-      throw std::runtime_error(exr + ": " + e.what());
-    }
-    outputs.write(exr, bytes);
-  }
+  if (!exr.empty()) outputs.write_with(exr, [&](const std::string& tmp) { core::write_exr_to(tmp, exr, frame); });
   if (!png.empty()) outputs.write(png, core::png_preview(frame));
   if (!heat.empty()) outputs.write(heat, core::heat_map_png(frame, "parallax.iterations", heat_max));
 }
@@ -210,6 +203,43 @@ void check_map_cache(const std::string& dir, const std::vector<std::pair<std::st
     const auto [o, c] = std::mismatch(out.begin(), out.end(), cache.begin(), cache.end());
     if (o == out.end())
       throw core::InputError("--map-cache", dir, "lies inside " + path + ", the file of " + option);
+  }
+}
+
+namespace {
+int run_threads = 0;  // set_threads: 0 until set
+}
+
+void set_threads(const std::string& text) {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  if (text.empty()) {
+    run_threads = int(cores);
+    core::set_exr_threads(run_threads);
+    return;
+  }
+  char* end = nullptr;
+  errno = 0;
+  const long n = std::strtol(text.c_str(), &end, 10);
+  if (end == text.c_str() || *end != '\0' || errno != 0 || n < 1 || n > 1024)
+    throw core::InputError("--threads", text,
+                           "expected a count of threads from 1 to 1024 (this machine has " + std::to_string(cores) +
+                               " cores)");
+  run_threads = int(n);
+  core::set_exr_threads(run_threads);
+}
+
+int threads() {
+  if (run_threads == 0) set_threads("");
+  return run_threads;
+}
+
+void set_compression(const std::string& name) {
+  try {
+    core::set_exr_compression(name);
+  } catch (const core::InputError& e) {
+    const std::string near = nearest(name, core::exr_compression_names());
+    if (near.empty()) throw;
+    throw core::InputError("--compression", name, "unknown: did you mean '" + near + "'? (none, rle, zips, zip, piz)");
   }
 }
 

@@ -40,6 +40,15 @@ int main(int argc, char** argv) {
   app.add_option("--max-memory", max_memory,
                  "memory a run may take, e.g. 8G or 512M (default: half the machine's); given before or after the "
                  "subcommand");
+  std::string threads, compression = "zip";
+  app.add_option("--threads", threads,
+                 "threads for the golden model and for compressing EXR files (default: one per core); the SystemC "
+                 "pipeline runs on one")
+      ->check(app::kNotEmpty);
+  app.add_option("--compression", compression,
+                 "how EXR files are compressed: none, rle, zips, zip (default) or piz, OpenEXR's lossless methods "
+                 "(docs/performance.md)")
+      ->check(app::kNotEmpty);
   app.fallthrough();  // (so that `render --max-memory 8G` reaches it)
   std::vector<app::Command> commands = {app::add_render_command(app), app::add_reference_command(app),
                                         app::add_compare_command(app), app::add_bench_command(app),
@@ -59,6 +68,8 @@ int main(int argc, char** argv) {
   }
   try {
     if (!max_memory.empty()) core::MemoryBudget::process().set_limit(core::parse_bytes(max_memory, "--max-memory"));
+    app::set_threads(threads);
+    app::set_compression(compression);
     for (const auto& command : commands)
       if (command.cli->parsed()) return command.run();
   } catch (const core::InputError& e) {

@@ -30,17 +30,31 @@ Progress::~Progress() {
   if (ticker_.joinable()) ticker_.join();
 }
 
-void Progress::phase(const std::string& name) {
+void Progress::phase(const std::string& name, const std::string& key) {
   {
     std::lock_guard lock(mutex_);
     phase_ = name;
     share_ = -1;
+    const auto now = std::chrono::steady_clock::now();
+    ended_ = now;
+    if (!key.empty()) starts_.emplace_back(key, now);
   }
   core::pause_point(name.c_str());
 }
 
+std::vector<std::pair<std::string, double>> Progress::seconds() const {
+  const auto now = std::chrono::steady_clock::now();
+  std::vector<std::pair<std::string, double>> times;
+  for (size_t i = 0; i < starts_.size(); ++i) {
+    const auto end = i + 1 < starts_.size() ? starts_[i + 1].second : (stop_ ? ended_ : now);
+    times.emplace_back(starts_[i].first, std::chrono::duration<double>(end - starts_[i].second).count());
+  }
+  return times;
+}
+
 void Progress::done() {
   std::lock_guard lock(mutex_);
+  if (!stop_) ended_ = std::chrono::steady_clock::now();
   if (drawn_) std::fprintf(stderr, "\r%s\r", std::string(72, ' ').c_str());
   drawn_ = false;
   stop_ = true;

@@ -11,6 +11,8 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 namespace shadetlm::app {
 
@@ -22,7 +24,10 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
 
   bool enabled() const { return enabled_; }
-  void phase(const std::string& name);  // a new phase, its share not known (yet)
+  // A new phase, its share not known (yet); one with a `key` is timed (seconds()).
+  void phase(const std::string& name, const std::string& key = "");
+  // The timed phases so far, in order, as (key, seconds): the current one up to now.
+  std::vector<std::pair<std::string, double>> seconds() const;
   void share(double done) { share_ = done; }  // of the phase, 0 … 1 (from any thread)
   void done();  // clears the line and stops drawing (before the results go to stdout)
 
@@ -38,6 +43,8 @@ class Progress {
   std::string phase_ = "starting";
   bool stop_ = false, drawn_ = false;
   std::atomic<double> share_{-1};  // < 0: not known
+  std::vector<std::pair<std::string, std::chrono::steady_clock::time_point>> starts_;  // keyed phases' starts
+  std::chrono::steady_clock::time_point ended_{};  // when the last keyed phase ended (phase() or done())
   std::thread ticker_;
 };
 

@@ -35,7 +35,7 @@ Command add_reference_command(CLI::App& app) {
             take_run_memory(scene, false, true, 0);
             progress.phase("golden model");
             const auto start = std::chrono::steady_clock::now();
-            const reference::Image image = reference::render(scene);
+            const reference::Image image = reference::render(scene, threads());
             const double seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             core::Frame frame = reference::to_frame(image);

@@ -28,7 +28,7 @@ namespace {
 // covered in either frame, and frame-wide), the coverage, and the truth the model used.
 nlohmann::json error_against_reference(const core::Frame& frame, const core::Scene& scene, double* reference_s) {
   const auto start = std::chrono::steady_clock::now();
-  const core::Frame ref = reference::to_frame(reference::render(scene));
+  const core::Frame ref = reference::to_frame(reference::render(scene, threads()));
   *reference_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   core::CompareOptions o;
   o.fail = 0;  // report, do not judge
@@ -177,7 +177,7 @@ void check_before_simulation(const RenderOptions& opt, const core::Scene& scene,
 // Renders the scene on the engine named ("loop" or "systemc"), its share done shown.
 modules::RenderResult render_with_progress(const core::Scene& scene, const std::string& engine,
                                            modules::Inspect inspect, Progress& progress) {
-  progress.phase("pipeline");
+  progress.phase("pipeline", "pipeline");
   inspect.progress = [&progress, halfway = false](double share) mutable {
     progress.share(share);
     if (!halfway && share >= 0.5) halfway = true, core::pause_point("pipeline half");
@@ -206,16 +206,34 @@ nlohmann::json statistics_of(const RenderOptions& opt, const modules::RenderResu
   return stats;
 }
 
-// Writes the frame, its preview and heat map, the statistics and the timing log beside
-// the inspection files the pipeline wrote into `outputs`, and commits them all: all
-// appear, or none (a failed write, a signal: the temporaries go with `outputs`).
-void write_outputs(const RenderOptions& opt, const modules::RenderResult& r, const nlohmann::json& stats,
-                   core::OutputSet& outputs) {
+// The phases' times so far, {"load": s, "pipeline": s, …} (Progress::seconds).
+nlohmann::json phase_times(const Progress& progress) {
+  nlohmann::json times = nlohmann::json::object();
+  for (const auto& [key, seconds] : progress.seconds()) times[key] = seconds;
+  return times;
+}
+
+// Writes the frame, its preview and heat map, the timing log and the statistics (with
+// the phases' times: "write" so far is encoding and writing everything before them)
+// beside the inspection files the pipeline wrote into `outputs`, and commits them all:
+// all appear, or none (a failed write, a signal: the temporaries go with `outputs`).
+void write_outputs(const RenderOptions& opt, const modules::RenderResult& r, nlohmann::json& stats,
+                   core::OutputSet& outputs, const Progress& progress) {
+  add_frame(outputs, r.frame, opt.output, opt.preview, opt.heat_map, opt.heat_max);
+  if (!opt.timing_log.empty()) outputs.write(opt.timing_log, r.timing_log);
+  stats["phases_s"] = phase_times(progress);
   // (text from the command line need not be UTF-8: replaced, not refused after the render)
   if (!opt.stats.empty()) outputs.write(opt.stats, stats.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-  if (!opt.timing_log.empty()) outputs.write(opt.timing_log, r.timing_log);
-  add_frame(outputs, r.frame, opt.output, opt.preview, opt.heat_map, opt.heat_max);
   outputs.commit();
+}
+
+// "  phases: load 0.01 s, pipeline 0.15 s, golden_model 0.4 s, write 0.09 s (2 threads)"
+void print_phases(const Progress& progress) {
+  std::cout << "  phases:";
+  const char* separator = " ";
+  for (const auto& [key, seconds] : progress.seconds())
+    std::cout << separator << key << " " << core::figure(seconds) << " s", separator = ", ";
+  std::cout << " (" << threads() << " threads for the golden model and EXR compression)\n";
 }
 
 // Saturations, overflows and invalid operations that the blocks' number formats met,
@@ -329,25 +347,26 @@ Command add_render_command(CLI::App& app) {
       ->check(kNotEmpty);
   return {cmd, [opt]() {
             Progress progress("render");
-            progress.phase("loading the scene");
+            progress.phase("loading the scene", "load");
             core::Scene scene = opt->scene.load();
             modules::Inspect inspect = inspection_of(*opt, scene);
             check_before_simulation(*opt, scene, inspect);
             core::OutputSet outputs;  // every file of the run, committed together at its end
             inspect.outputs = &outputs;
             if (!opt->map_cache.empty()) {
-              progress.phase("parallax maps (cache)");
+              progress.phase("parallax maps (cache)", "maps");
               use_map_cache(scene, opt->map_cache);
             }
             modules::RenderResult r = render_with_progress(scene, opt->engine, inspect, progress);
             double reference_s = 0;
-            progress.phase(opt->compare ? "golden model" : "statistics");
-            const nlohmann::json stats = statistics_of(*opt, r, scene, &reference_s);
+            progress.phase(opt->compare ? "golden model" : "statistics", opt->compare ? "golden_model" : "statistics");
+            nlohmann::json stats = statistics_of(*opt, r, scene, &reference_s);
             describe(r.frame, scene, opt->scene, opt->engine == "loop" ? "pipeline-loop" : "pipeline");
-            progress.phase("writing");
-            write_outputs(*opt, r, stats, outputs);
+            progress.phase("writing", "write");
+            write_outputs(*opt, r, stats, outputs, progress);
             progress.done();
             print_summary(*opt, scene, r, stats, inspect, reference_s);
+            print_phases(progress);
             const int nonfinite = nonfinite_status(r.nonfinite_replaced, opt->allow_nonfinite);
             const int overflow = number_events_status(r, opt->allow_overflow);
             return std::max(nonfinite, overflow);

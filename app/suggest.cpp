@@ -24,7 +24,8 @@ size_t distance(const std::string& a, const std::string& b) {
   return d[a.size()][b.size()];
 }
 
-// The nearest of `names` to `word`, if near enough to be a typo ("" if none).
+}  // namespace
+
 std::string nearest(const std::string& word, const std::vector<std::string>& names) {
   std::string best;
   if (word.size() <= 2) return best;  // (-x: every short option is one letter away)
@@ -33,6 +34,8 @@ std::string nearest(const std::string& word, const std::vector<std::string>& nam
     if (const size_t d = distance(word, n); d < best_distance) best = n, best_distance = d;
   return best;
 }
+
+namespace {
 
 std::vector<std::string> option_names(const CLI::App* app) {
   std::vector<std::string> names;

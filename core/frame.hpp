@@ -33,12 +33,21 @@ struct Frame {
 };
 
 // ---- The io component (shadetlm::io, linked apart: file formats) from here on.
-// Writes a single-part, ZIP-compressed EXR with every channel as 32-bit float and the
+// How EXR files are written, for the whole process (the --compression and --threads
+// options): OpenEXR's lossless compressions (none, rle, zips, zip, piz; a lossy name
+// or an unknown one is an InputError naming --compression), zip by default
+// (docs/performance.md); and the threads of OpenEXR's pool, which compress and
+// decompress a file's blocks in parallel (1: none, on the calling thread).
+const std::vector<std::string>& exr_compression_names();
+void set_exr_compression(const std::string& name);
+void set_exr_threads(int threads);
+// Writes a single-part EXR, compressed as set above, with every channel as 32-bit float and the
 // attributes as string attributes. The file appears only when complete: it is written
 // beside the target and renamed. Throws std::runtime_error naming the path on failure.
 void write_exr(const std::string& path, const Frame& frame);
-// The same file's bytes (to write with an OutputSet); throws std::runtime_error.
-std::string exr_bytes(const Frame& frame);
+// The same, straight into `file` (a temporary of an OutputSet), streamed as OpenEXR
+// compresses it; errors name `output`, the file it becomes.
+void write_exr_to(const std::string& file, const std::string& output, const Frame& frame);
 // Reads every channel (half and uint are converted to float) and the string attributes.
 // Throws InputError naming the path.
 Frame read_exr(const std::string& path);

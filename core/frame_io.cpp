@@ -1,5 +1,7 @@
 // Frames in and out of files (the io component): EXR and PNG.
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -11,47 +13,117 @@
 #include <ImfOutputFile.h>
 #include <ImfStdIO.h>
 #include <ImfStringAttribute.h>
+#include <ImfThreading.h>
 #include <png.h>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include "shadetlm/core/input_file.hpp"
 #include "shadetlm/core/frame.hpp"
 #include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/output.hpp"
 #include "shadetlm/core/texture.hpp"
 
 namespace shadetlm::core {
 
-std::string exr_bytes(const Frame& frame) {
+namespace {
+// How frames and maps are compressed (set_exr_compression): OpenEXR's lossless methods
+// only, so that a frame read back is the frame the model computed.
+struct Method {
+  const char* name;
+  Imf::Compression compression;
+};
+constexpr Method kLossless[] = {{"none", Imf::NO_COMPRESSION},   {"rle", Imf::RLE_COMPRESSION},
+                                {"zips", Imf::ZIPS_COMPRESSION}, {"zip", Imf::ZIP_COMPRESSION},
+                                {"piz", Imf::PIZ_COMPRESSION}};
+Imf::Compression exr_compression = Imf::ZIP_COMPRESSION;
+}  // namespace
+
+const std::vector<std::string>& exr_compression_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const Method& m : kLossless) n.push_back(m.name);
+    return n;
+  }();
+  return names;
+}
+
+void set_exr_compression(const std::string& name) {
+  for (const Method& m : kLossless)
+    if (name == m.name) return void(exr_compression = m.compression);
+  for (const char* lossy : {"pxr24", "b44", "b44a", "dwaa", "dwab"})
+    if (name == lossy)
+      throw InputError("--compression", name,
+                       "is lossy for 32-bit float channels (a frame read back would not be the model's): use none, "
+                       "rle, zips, zip or piz");
+  throw InputError("--compression", name, "unknown: one of none, rle, zips, zip, piz (OpenEXR's lossless methods)");
+}
+
+void set_exr_threads(int threads) {
+  SignalsHeld held;  // the pool's threads never take SIGINT or SIGTERM: the main thread does
+  Imf::setGlobalThreadCount(threads > 1 ? threads : 0);  // (0: compress on the calling thread)
+}
+
+namespace {
+// OpenEXR's output onto a file: positioned writes (OpenEXR seeks back to fill in its
+// offset table), each checked. OpenEXR writes that table from OutputFile's destructor,
+// which swallows exceptions, so the first failure is also kept for error().
+class FileStream : public Imf::OStream {
+ public:
+  FileStream(int fd, const std::string& name) : Imf::OStream(name.c_str()), fd_(fd) {}
+  void write(const char c[], int n) override {
+    while (n > 0) {
+      const ssize_t w = ::pwrite(fd_, c, size_t(n), off_t(pos_));
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) {
+        if (error_ == 0) error_ = w < 0 ? errno : ENOSPC;
+        throw std::runtime_error(std::strerror(error_));
+      }
+      c += w, n -= int(w), pos_ += uint64_t(w);
+    }
+  }
+  uint64_t tellp() override { return pos_; }
+  void seekp(uint64_t pos) override { pos_ = pos; }
+  int error() const { return error_; }
+
+ private:
+  int fd_;
+  uint64_t pos_ = 0;
+  int error_ = 0;
+};
+}  // namespace
+
+void write_exr_to(const std::string& file, const std::string& output, const Frame& frame) {
+  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) throw std::runtime_error(output + ": cannot write the file: " + std::strerror(errno));
+  int error = 0;
   try {
     Imf::Header header(frame.width, frame.height);
-    header.compression() = Imf::ZIP_COMPRESSION;
+    header.compression() = exr_compression;
     for (const auto& [k, v] : frame.attributes) header.insert(k, Imf::StringAttribute(v));
     Imf::FrameBuffer fb;
     for (const auto& c : frame.channels) {
       header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
       fb.insert(c.name, Imf::Slice(Imf::FLOAT, (char*)c.values.data(), sizeof(float), sizeof(float) * frame.width));
     }
-    // Put together in memory, then written with checked writes: OpenEXR writes its
-    // offset table in its destructor, which swallows a failed write.
-    Imf::StdOSStream bytes;
+    FileStream stream(fd, output);
     {
-      Imf::OutputFile out(bytes, header);
+      Imf::OutputFile out(stream, header);
       out.setFrameBuffer(fb);
       out.writePixels(frame.height);
-    }
-    return bytes.str();
+    }  // (the offset table written here)
+    error = stream.error();
   } catch (const std::exception& e) {
-    throw std::runtime_error(std::string("cannot encode the EXR: ") + e.what());
+    ::close(fd);
+    throw std::runtime_error(output + ": cannot write the EXR: " + e.what());
   }
+  if (::close(fd) != 0 && error == 0) error = errno;
+  if (error != 0) throw std::runtime_error(output + ": cannot write the file: " + std::strerror(error));
 }
 
 void write_exr(const std::string& path, const Frame& frame) {
-  std::string bytes;
-  try {
-    bytes = exr_bytes(frame);
-  } catch (const std::exception& e) {
-    throw std::runtime_error(path + ": " + e.what());
-  }
-  write_file(path, bytes);
+  write_atomically(path, [&](const std::string& tmp) { write_exr_to(tmp, path, frame); });
 }
 
 Frame read_exr(const std::string& path) {

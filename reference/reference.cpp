@@ -2,9 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <system_error>
+#include <thread>
+#include <vector>
 
 #include "shadetlm/core/coverage.hpp"
+#include "shadetlm/core/output.hpp"
 #include "shadetlm/reference/parallax.hpp"
 
 namespace shadetlm::reference {
@@ -343,10 +348,17 @@ void draw_pixel(const core::Scene& scene, const core::Object& object, const core
   write_pixel(img, i, frag.t, shade_fragment(scene, object, material, view, tri, frag));
 }
 
+// The rows of the image one thread draws: bands of kBandRows rows, every parts-th band
+// from its part on (interleaved, so that an object on one side of the frame is shared).
+struct Rows {
+  int part = 0, parts = 1;
+  bool own(int y) const { return (y / kBandRows) % parts == part; }
+};
+
 // Draws a triangle: clipped to the view volume, each piece snapped, culled if the object
-// asks, and every pixel it covers drawn (core/coverage.hpp).
+// asks, and every pixel it covers in `rows` drawn (core/coverage.hpp).
 void draw_triangle(const core::Scene& scene, const core::Object& object, const core::Material& material,
-                   const View& view, const WorldTriangle& tri, Image& img) {
+                   const View& view, const WorldTriangle& tri, Image& img, Rows rows) {
   const auto poly = core::clip_triangle(view.view_projection * glm::dvec4(tri.P[0], 1),
                                         view.view_projection * glm::dvec4(tri.P[1], 1),
                                         view.view_projection * glm::dvec4(tri.P[2], 1));
@@ -359,28 +371,60 @@ void draw_triangle(const core::Scene& scene, const core::Object& object, const c
       continue;
     if (object.cull_back && !st.front_facing) continue;
     for (int py = st.y0; py <= st.y1; ++py) {
+      if (!rows.own(py)) continue;
       const auto [x_begin, x_end] = st.row_span(py);
       for (int px = x_begin; px < x_end; ++px) draw_pixel(scene, object, material, view, tri, px, py, img);
     }
   }
 }
 
-// Draws every triangle of an object, in world space.
-void draw_object(const core::Scene& scene, const core::Object& object, const View& view, Image& img) {
-  const core::Mesh mesh = core::to_world(object);
+// Draws every triangle of an object (its mesh in world space) into `rows`.
+void draw_object(const core::Scene& scene, const core::Object& object, const core::Mesh& mesh, const View& view,
+                 Image& img, Rows rows) {
   const core::Material& material = scene.materials[object.material];
   for (const auto& indices : mesh.triangles) {
     WorldTriangle tri;
-    if (setup_triangle(mesh, indices, material, tri)) draw_triangle(scene, object, material, view, tri, img);
+    if (setup_triangle(mesh, indices, material, tri)) draw_triangle(scene, object, material, view, tri, img, rows);
   }
 }
 
 }  // namespace
 
-Image render(const core::Scene& scene) {
+Image render(const core::Scene& scene, int threads) {
   Image img = blank_image(scene);
   const View view = make_view(scene.camera);
-  for (const core::Object& object : scene.objects) draw_object(scene, object, view, img);
+  std::vector<core::Mesh> meshes;
+  for (const core::Object& object : scene.objects) meshes.push_back(core::to_world(object));
+  const auto draw = [&](Rows rows) {
+    for (size_t k = 0; k < scene.objects.size(); ++k) draw_object(scene, scene.objects[k], meshes[k], view, img, rows);
+  };
+  if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  const int bands = (img.height + kBandRows - 1) / kBandRows;
+  const int parts = std::max(1, std::min(threads, bands));
+  // Each part its own thread (the last on this one); a thread that cannot be had leaves
+  // its part to this thread after the others.
+  std::vector<std::thread> workers;
+  std::vector<std::exception_ptr> errors(static_cast<size_t>(parts));
+  std::vector<int> left_over;
+  for (int part = 0; part + 1 < parts; ++part) {
+    try {
+      core::SignalsHeld held;  // SIGINT and SIGTERM stay with the main thread
+      workers.emplace_back([&, part] {
+        try {
+          draw({part, parts});
+        } catch (...) {
+          errors[size_t(part)] = std::current_exception();
+        }
+      });
+    } catch (const std::system_error&) {
+      left_over.push_back(part);
+    }
+  }
+  draw({parts - 1, parts});
+  for (int part : left_over) draw({part, parts});
+  for (auto& w : workers) w.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
   return img;
 }
 

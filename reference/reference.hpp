@@ -47,7 +47,11 @@ struct Image {
 glm::dvec3 shade(const core::Scene& scene, const core::Material& material, const glm::dvec3& P,
                  const glm::dvec3& N, const glm::dvec3& tex);
 
-Image render(const core::Scene& scene);
+// `threads` (0: one per core) each draw every triangle into their own rows of the image
+// (interleaved bands of kBandRows): every pixel sees the triangles in the same order, so
+// the image is the same whatever the count.
+Image render(const core::Scene& scene, int threads = 0);
+constexpr int kBandRows = 4;
 
 // What the golden model took as the truth where a scene gives it a choice, per material
 // that objects use: for bump materials "height field" (Blinn's normal of the height

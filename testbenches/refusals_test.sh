@@ -125,6 +125,31 @@ check precompute-normalmap-jpg 2 "$bin" precompute normalmap h.png -o n.jpg
 absent precompute-normalmap-jpg-nothing n.jpg
 check precompute-normalmap-png 0 "$bin" precompute normalmap h.png -o n.png
 
+# --- --threads and --compression: every lossless method writes a frame that reads back
+# as the same pixels, on one thread or several; bad counts and names refused (exit 2).
+check frame-default 0 "$bin" render "${small[@]}" -o c-default.exr --compare-reference
+for c in none rle zips zip piz; do
+  for t in 1 3; do
+    check "compression-$c-threads-$t" 0 "$bin" --threads "$t" --compression "$c" render "${small[@]}" -o "c-$c.exr" \
+      --compare-reference
+    check "compression-$c-threads-$t-same" 0 "$bin" compare "c-$c.exr" c-default.exr --fail 0
+  done
+done
+[[ $(stat -c %s c-none.exr) -gt $(stat -c %s c-zip.exr) ]] && ((passes++)) ||
+  { echo "FAIL compression-zip-smaller: zip no smaller than none"; ((failures++)); }
+for bad in 0 -1 1025 two 1.5 ''; do
+  check "threads-$bad" 2 "$bin" --threads "$bad" render "${small[@]}" -o bad.exr
+  says "threads-$bad-named" "--threads"
+  absent "threads-$bad-nothing" bad.exr
+done
+check compression-typo 2 "$bin" render "${small[@]}" -o bad.exr --compression pizz
+says compression-typo-suggests "did you mean 'piz'"
+check compression-lossy 2 "$bin" render "${small[@]}" -o bad.exr --compression dwaa
+says compression-lossy-why "lossy"
+check compression-unknown 2 "$bin" render "${small[@]}" -o bad.exr --compression brotli
+says compression-unknown-named "--compression"
+absent compression-nothing bad.exr
+
 # --- An address-space limit (ulimit -v) below the default budget: the budget follows it,
 # and an image too large for it is refused by name (exit 2), not met as an allocation
 # that fails. (Not under AddressSanitizer, whose shadow memory no ulimit -v leaves room for.)

@@ -179,3 +179,21 @@ TEST_CASE("back faces are culled only when the object asks", "[reference]") {
   s.objects[0].cull_back = true;
   CHECK(reference::render(s).alpha[0] == 0);
 }
+
+TEST_CASE("the golden model draws the same image on any number of threads", "[reference]") {
+  // Overlapping objects (the knot over itself, ties kept by the first drawn) and a
+  // parallax material: each thread draws every triangle into its own bands of rows.
+  for (const char* file : {"golden/knot/scene.json", "golden/parallax-steps/scene.json", "golden/demo/scene.json"}) {
+    const core::Scene scene = core::load_scene(test::source_path(file));
+    const reference::Image one = reference::render(scene, 1);
+    for (int threads : {2, 3, 7}) {
+      const reference::Image many = reference::render(scene, threads);
+      INFO(file << " on " << threads << " threads");
+      CHECK(many.color == one.color);
+      CHECK(many.depth == one.depth);
+      CHECK(many.alpha == one.alpha);
+      CHECK(many.normal == one.normal);
+      CHECK(many.hit == one.hit);
+    }
+  }
+}
