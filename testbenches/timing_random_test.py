@@ -1,0 +1,154 @@
+#!/usr/bin/env python3
+"""The fast timing model against the clocked timing reference on random configurations
+(docs/pipeline.md, "The timing check"): small random scenes (spheres, planes, cubes and
+tori of every shading path, point and directional lights), random FIFO depths (1-16),
+IIs (1-6) and latencies of every block, the arithmetic units' latencies, normalize's
+modes and seeding, the memory model on and off, elaborate=all or as needed. Each must
+give the same start and hand-over cycle for every pixel at every block as the clocked
+reference (`shadetlm timing-check`). Deterministic: configuration k of seed S is the
+same on every machine; a failure prints the seed and the k that reproduce it alone
+(--seed S --only k).
+
+Usage: timing_random_test.py SHADETLM [--count 200] [--seed 38] [--only K]
+Prints "N passed, N failed"; exit 1 if any failed, 2 on bad arguments."""
+import argparse
+import json
+import os
+import random
+import shutil
+import subprocess
+import sys
+import tempfile
+
+PATHS = ["phong", "bump-classic", "bump-tangent", "bump-square", "bump-object", "texture-screen", "texture-object",
+         "parallax"]
+SHAPES = ["sphere", "plane", "cube", "torus"]
+
+
+def fail(message):
+    print("timing_random_test: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+def random_scene(rng):
+    """A small scene: 1-3 objects of random shapes and paths, 1-3 lights."""
+    width = rng.randint(16, 64)
+    scene = {"camera": {"position": [rng.uniform(-1, 1), rng.uniform(-0.5, 1.5), rng.uniform(3, 5)],
+                        "target": [0, 0, 0], "resolution": [width, rng.randint(12, 48)],
+                        "local_viewer": rng.random() < 0.5},
+             "lights": [], "textures": {
+                 "relief": {"type": "steps", "size": [32, 32], "cells": rng.randint(2, 6), "levels": rng.randint(2, 5),
+                            "seed": rng.randint(1, 99)},
+                 "check": {"type": "checker", "size": [32, 32], "cells": rng.choice([2, 4, 8])}},
+             "materials": {}, "objects": []}
+    for _ in range(rng.randint(1, 3)):
+        if rng.random() < 0.5:
+            scene["lights"].append({"type": "directional", "direction": [rng.uniform(-1, 1), rng.uniform(-1, 0), -1]})
+        else:
+            scene["lights"].append({"type": "point", "position": [rng.uniform(-3, 3), rng.uniform(0, 3), rng.uniform(1, 3)]})
+    for k in range(rng.randint(1, 3)):
+        path = rng.choice(PATHS)
+        material = {"path": path, "shininess": rng.choice([4, 16, 64])}
+        if path.startswith("bump") or path == "parallax":
+            material["height_map"] = "relief"
+        if path.startswith("texture") or rng.random() < 0.3:
+            material["texture"] = "check"
+        scene["materials"]["m%d" % k] = material
+        shape = rng.choice(SHAPES)
+        obj = {"shape": shape, "material": "m%d" % k,
+               "transform": {"translate": [rng.uniform(-1, 1), rng.uniform(-0.5, 0.5), rng.uniform(-1, 0.5)],
+                             "rotate": [rng.uniform(-60, 60), rng.uniform(-60, 60), 0]}}
+        if shape == "sphere":
+            obj["radius"] = rng.uniform(0.3, 1)
+        scene["objects"].append(obj)
+    return scene
+
+
+def random_settings(rng, keys):
+    """--set values: each timed key drawn with probability 1/2, and the modes."""
+    sets = []
+    for key in keys:
+        if rng.random() < 0.5:
+            continue
+        if key.endswith(".fifo_depth"):
+            sets.append("pipeline.%s=%d" % (key, rng.randint(1, 16)))
+        elif key.endswith(".ii"):
+            sets.append("pipeline.%s=%d" % (key, rng.randint(1, 6)))
+        elif key.endswith(".latency") and key != "memory.latency":
+            sets.append("pipeline.%s=%d" % (key, rng.randint(1, 40)))
+    sets.append("pipeline.normalize.mode=" + rng.choice(["exact", "forward-difference", "rsqrt0", "rsqrt1", "rsqrt2"]))
+    sets.append("pipeline.normalize.seed=" + rng.choice(["packet", "line"]))
+    sets.append("pipeline.elaborate=" + rng.choice(["needed", "all"]))
+    if rng.random() < 0.5:
+        sets.append("pipeline.memory.model=dram")
+        sets.append("pipeline.memory.latency=%d" % rng.randint(1, 300))
+    return sets
+
+
+def timed_keys(binary, folder):
+    """The settings that time the blocks (latency, II, FIFO depth), from a render's stats."""
+    stats = os.path.join(folder, "keys.json")
+    subprocess.run([binary, "render", "--set", "camera.resolution=[4,4]", "-o", os.path.join(folder, "keys.exr"),
+                    "--stats", stats], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    with open(stats) as f:
+        config = json.load(f)["config"]
+    return sorted(k for k in config if k.endswith((".fifo_depth", ".ii", ".latency")))
+
+
+def one(binary, folder, keys, seed, k):
+    """Configuration k of `seed`: (ok, what), rendered and checked."""
+    rng = random.Random("%d/%d" % (seed, k))
+    scene, sets = random_scene(rng), random_settings(rng, keys)
+    path = os.path.join(folder, "scene.json")
+    with open(path, "w") as f:
+        json.dump(scene, f)
+    log = os.path.join(folder, "t.log")
+    cmd = [binary, "render", path, "-o", os.path.join(folder, "f.exr"), "--timing-log", log, "--allow-overflow",
+           "--allow-nonfinite"]
+    for s in sets:
+        cmd += ["--set", s]
+    r = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if r.returncode != 0:
+        return False, "render exit %d: %s" % (r.returncode, r.stderr.strip()[:300])
+    c = subprocess.run([binary, "timing-check", log, "--show", "3"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True)
+    head = c.stdout.splitlines()[0] if c.stdout else ""
+    if c.returncode != 0:
+        return False, "DIFFERENT (%s): %s" % (" ".join(sets), c.stdout.strip()[:600])
+    return True, head
+
+
+def main():
+    p = argparse.ArgumentParser(add_help=False)
+    p.error = lambda message: fail(message)
+    p.add_argument("binary")
+    p.add_argument("--count", type=int, default=200)
+    p.add_argument("--seed", type=int, default=38)
+    p.add_argument("--only", type=int)
+    a = p.parse_args()
+    if not (os.path.isfile(a.binary) and os.access(a.binary, os.X_OK)):
+        fail("%s: not an executable program" % a.binary)
+    if not 1 <= a.count <= 100000:
+        fail("--count takes 1 to 100000, not %d" % a.count)
+    folder = tempfile.mkdtemp(prefix="timing-random-")
+    passes = failures = pixels = 0
+    try:
+        keys = timed_keys(a.binary, folder)
+        for k in ([a.only] if a.only is not None else range(a.count)):
+            ok, what = one(a.binary, folder, keys, a.seed, k)
+            if ok:
+                passes += 1
+                pixels += int(what.split("(")[1].split()[0]) if "(" in what else 0
+            else:
+                failures += 1
+                print("FAIL configuration %d of seed %d (again: %s %s --seed %d --only %d): %s" % (
+                    k, a.seed, sys.argv[0], a.binary, a.seed, k, what))
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    print("%d configurations, %d pixels compared at every block" % (passes + failures, pixels))
+    print("%d passed, %d failed" % (passes, failures))
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
