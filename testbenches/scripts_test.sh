@@ -28,12 +28,13 @@ snapshot() {  # every entry under the work folder; files with their size and tim
 }
 
 # run SCRIPT.py ARGS...: the script, in the work folder, stdin $stdin (else nothing), killed
-# after 60 s; its stdout and stderr into $tmp.
+# after 300 s (a guard against a hang: the cases take well under a second unloaded); its
+# stdout and stderr into $tmp.
 run() {
-  (cd "$work" && timeout 60 "$python" -S "$scripts/$1" "${@:2}" <"${stdin:-/dev/null}" >"$tmp/stdout" 2>"$tmp/stderr")
+  (cd "$work" && timeout 300 "$python" -S "$scripts/$1" "${@:2}" <"${stdin:-/dev/null}" >"$tmp/stdout" 2>"$tmp/stderr")
 }
 
-# refused NAME STATUS WHAT SCRIPT.py ARGS...: the script exits STATUS within 60 s with one
+# refused NAME STATUS WHAT SCRIPT.py ARGS...: the script exits STATUS (not killed by run's guard) with one
 # line on stderr that starts with its name and contains WHAT, no traceback, and the work
 # folder as it was.
 refused() {
@@ -45,7 +46,7 @@ refused() {
   rc=$?
   after=$(snapshot)
   mapfile -t lines <"$tmp/stderr"
-  if ((rc == 124)); then problems+=("hung: killed after 60 s"); elif ((rc != want)); then
+  if ((rc == 124)); then problems+=("hung: killed after 300 s"); elif ((rc != want)); then
     problems+=("exit $rc, expected $want"); fi
   [[ ${lines[*]} == *Traceback* ]] && problems+=("a traceback")
   ((${#lines[@]} == 1)) || problems+=("${#lines[@]} lines on stderr, expected 1")
@@ -196,12 +197,12 @@ bad sweep-no-stats "no readable stats" sweep.py "$f/no-stats" "$src" --shard 0/1
 bad sweep-broken-stats "no readable stats" sweep.py "$f/broken-stats" "$src" --shard 0/1 --results r --match "$one"
 bad sweep-not-a-program "cannot run it" sweep.py "$f/text" "$src" --shard 0/1 --results r --match "$one"
 # SIGTERM (scancel, timeout) in the middle of a shard: the render killed, nothing left.
-fake sleeps "echo \$\$ >$f/sleeps.pid; exec sleep 60"
+fake sleeps "echo \$\$ >$f/sleeps.pid; exec sleep 3600"  # (killed with the shard, whenever that is)
 before=$(snapshot)
 (cd "$work" && exec "$python" -S "$scripts/sweep.py" "$f/sleeps" "$src" --shard 0/1 --results r --match "$one" \
    </dev/null >"$tmp/stdout" 2>"$tmp/stderr") &
 shard=$!
-for ((i = 0; i < 600; i++)); do  # until the render runs (60 s at most)
+for ((i = 0; i < 3000; i++)); do  # until the render runs (an event; 300 s at most)
   [[ -e $work/r/shards/sweep-0-of-1.progress && -s $f/sleeps.pid ]] && break
   sleep 0.1
 done
