@@ -144,21 +144,29 @@ glm::dvec3 bump_normal(const core::Scene& scene, const core::Object& object, con
   return world;
 }
 
-// An image of the camera's size with nothing drawn: the background colour, alpha 0,
-// infinite depth, a zero normal.
-Image blank_image(const core::Scene& scene) {
+// An image of the camera's size, its pixels not yet written (clear_row writes them).
+Image sized_image(const core::Scene& scene) {
   const core::Camera& cam = scene.camera;
   Image img;
   img.width = cam.width;
   img.height = cam.height;
   const size_t n = size_t(img.width) * img.height;
-  img.color.assign(n, scene.background);
-  img.alpha.assign(n, 0.0);
-  img.depth.assign(n, std::numeric_limits<double>::infinity());
-  img.normal.assign(n, glm::dvec3(0));
+  img.color.resize(n), img.alpha.resize(n), img.depth.resize(n), img.normal.resize(n);
   for (const core::Object& o : scene.objects)
-    if (scene.materials[size_t(o.material)].path == core::ShadingPath::Parallax) img.hit.assign(n, glm::dvec3(0));
+    if (scene.materials[size_t(o.material)].path == core::ShadingPath::Parallax) img.hit.resize(n);
   return img;
+}
+
+// Row y with nothing drawn: the background colour, alpha 0, infinite depth, a zero
+// normal (and hit).
+void clear_row(Image& img, const core::Scene& scene, int y) {
+  const size_t begin = img.index(0, y), end = begin + size_t(img.width);
+  std::fill(img.color.begin() + ptrdiff_t(begin), img.color.begin() + ptrdiff_t(end), scene.background);
+  std::fill(img.alpha.begin() + ptrdiff_t(begin), img.alpha.begin() + ptrdiff_t(end), 0.0);
+  std::fill(img.depth.begin() + ptrdiff_t(begin), img.depth.begin() + ptrdiff_t(end),
+            std::numeric_limits<double>::infinity());
+  std::fill(img.normal.begin() + ptrdiff_t(begin), img.normal.begin() + ptrdiff_t(end), glm::dvec3(0));
+  if (!img.hit.empty()) std::fill(img.hit.begin() + ptrdiff_t(begin), img.hit.begin() + ptrdiff_t(end), glm::dvec3(0));
 }
 
 // The camera as the golden model uses it: world → clip, the image size, and the rays
@@ -391,11 +399,13 @@ void draw_object(const core::Scene& scene, const core::Object& object, const cor
 }  // namespace
 
 Image render(const core::Scene& scene, int threads) {
-  Image img = blank_image(scene);
+  Image img = sized_image(scene);
   const View view = make_view(scene.camera);
   std::vector<core::Mesh> meshes;
   for (const core::Object& object : scene.objects) meshes.push_back(core::to_world(object));
   const auto draw = [&](Rows rows) {
+    for (int y = 0; y < img.height; ++y)
+      if (rows.own(y)) clear_row(img, scene, y);
     for (size_t k = 0; k < scene.objects.size(); ++k) draw_object(scene, scene.objects[k], meshes[k], view, img, rows);
   };
   if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));

@@ -16,7 +16,9 @@
 //    the true per-pixel tangent frame (docs/bump-mapping.md);
 //  * Blinn-Phong with every light (docs/golden-model.md).
 #include <map>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -26,19 +28,40 @@
 
 namespace shadetlm::reference {
 
+// An allocator that leaves new elements of a trivial type uninitialized: the image's
+// rows are first written by the threads that draw them (render), not all by one thread
+// before (at 1080p the image is about 150 MB).
+template <class T>
+struct Uninitialized : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = Uninitialized<U>;
+  };
+  Uninitialized() = default;
+  template <class U>
+  Uninitialized(const Uninitialized<U>&) noexcept {}
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    if constexpr (sizeof...(Args) == 0) ::new (static_cast<void*>(p)) U;
+    else ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <class T>
+using Buffer = std::vector<T, Uninitialized<T>>;
+
 struct Image {
   int width = 0, height = 0;
-  std::vector<glm::dvec3> color;   // linear RGB; the background where nothing is covered
-  std::vector<double> alpha;       // 1 covered, 0 not
-  std::vector<double> depth;       // eye-space depth; +inf where nothing is covered
+  Buffer<glm::dvec3> color;   // linear RGB; the background where nothing is covered
+  Buffer<double> alpha;       // 1 covered, 0 not
+  Buffer<double> depth;       // eye-space depth; +inf where nothing is covered
   // The unit shading normal, in the space its path lights in: world (phong,
   // bump-classic), tangent (bump-tangent, bump-square), object (bump-object); 0 where
   // nothing is covered.
-  std::vector<glm::dvec3> normal;
+  Buffer<glm::dvec3> normal;
   // Where a scene has a parallax material: the exact hit of the view ray with the relief
   // (u, v, height in [0, 1]; the polygon's own uv and 1 where nothing is traced), 0 on
   // other surfaces and the background; written as parallax.u, .v, .height. Else empty.
-  std::vector<glm::dvec3> hit;
+  Buffer<glm::dvec3> hit;
   size_t index(int x, int y) const { return size_t(y) * width + x; }
 };
 
