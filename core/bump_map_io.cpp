@@ -22,7 +22,7 @@ void write_mip_chain(const std::string& path, const Texture& base, const std::ve
     for (const auto& [k, v] : attributes) header.insert(k, Imf::StringAttribute(v));
     const char* names[3] = {"R", "G", "B"};
     for (const char* n : names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
-    Imf::StdOSStream bytes;  // in memory, then checked writes (frame_io.cpp's write_exr says why)
+    Imf::StdOSStream bytes;  // in memory, then checked writes (OpenEXR writes its offset table from a destructor that swallows a failed write)
     {
       Imf::TiledOutputFile out(bytes, header);
       if (out.numLevels() != int(levels.size()) + 1)

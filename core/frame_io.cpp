@@ -62,7 +62,16 @@ void set_exr_compression(const std::string& name) {
 
 void set_exr_threads(int threads) {
   SignalsHeld held;  // the pool's threads never take SIGINT or SIGTERM: the main thread does
-  Imf::setGlobalThreadCount(threads > 1 ? threads : 0);  // (0: compress on the calling thread)
+  try {
+    Imf::setGlobalThreadCount(threads > 1 ? threads : 0);  // (0: compress on the calling thread)
+  } catch (const std::exception& e) {
+    try {
+      Imf::setGlobalThreadCount(0);
+    } catch (const std::exception&) {
+    }
+    throw InputError("--threads", std::to_string(threads),
+                     std::string("OpenEXR's pool of that many threads cannot be started: ") + e.what());
+  }
 }
 
 namespace {

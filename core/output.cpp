@@ -258,6 +258,7 @@ void OutputSet::commit() {
       } catch (...) {  // take back what is already in place
         for (size_t k = 0; k < i; ++k) remove_quietly(files_[k]->output());
         committing = false;
+        if (const int signal = held_signal.exchange(0)) on_signal(signal);  // (not lost to the error)
         throw;
       }
     }

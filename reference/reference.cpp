@@ -412,26 +412,29 @@ Image render(const core::Scene& scene, int threads) {
   const int bands = (img.height + kBandRows - 1) / kBandRows;
   const int parts = std::max(1, std::min(threads, bands));
   // Each part its own thread (the last on this one); a thread that cannot be had leaves
-  // its part to this thread after the others.
-  std::vector<std::thread> workers;
+  // its part to this thread after the others. Every error is kept, by part, and the
+  // first rethrown once every thread is joined.
   std::vector<std::exception_ptr> errors(static_cast<size_t>(parts));
+  const auto draw_part = [&](int part) {
+    try {
+      draw({part, parts});
+    } catch (...) {
+      errors[size_t(part)] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> workers;
+  workers.reserve(size_t(parts));
   std::vector<int> left_over;
   for (int part = 0; part + 1 < parts; ++part) {
     try {
       core::SignalsHeld held;  // SIGINT and SIGTERM stay with the main thread
-      workers.emplace_back([&, part] {
-        try {
-          draw({part, parts});
-        } catch (...) {
-          errors[size_t(part)] = std::current_exception();
-        }
-      });
+      workers.emplace_back(draw_part, part);
     } catch (const std::system_error&) {
       left_over.push_back(part);
     }
   }
-  draw({parts - 1, parts});
-  for (int part : left_over) draw({part, parts});
+  draw_part(parts - 1);
+  for (int part : left_over) draw_part(part);
   for (auto& w : workers) w.join();
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);

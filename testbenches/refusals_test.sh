@@ -137,6 +137,11 @@ for c in none rle zips zip piz; do
 done
 [[ $(stat -c %s c-none.exr) -gt $(stat -c %s c-zip.exr) ]] && ((passes++)) ||
   { echo "FAIL compression-zip-smaller: zip no smaller than none"; ((failures++)); }
+# Each method wrote its own kind of file: five sizes, all different.
+sizes=$(for c in none rle zips zip piz; do stat -c %s "c-$c.exr"; done | sort -u | wc -l)
+((sizes == 5)) && ((passes++)) || { echo "FAIL compression-methods-differ: $sizes sizes for 5 methods"; ((failures++)); }
+check threads-twice 2 "$bin" --threads 1 render "${small[@]}" -o bad.exr --threads 2
+says threads-twice-named "--threads"
 for bad in 0 -1 1025 two 1.5 ''; do
   check "threads-$bad" 2 "$bin" --threads "$bad" render "${small[@]}" -o bad.exr
   says "threads-$bad-named" "--threads"

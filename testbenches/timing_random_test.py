@@ -15,6 +15,7 @@ import argparse
 import json
 import os
 import random
+import re
 import shutil
 import subprocess
 import sys
@@ -112,10 +113,14 @@ def one(binary, folder, keys, seed, k):
         return False, "render exit %d: %s" % (r.returncode, r.stderr.strip()[:300])
     c = subprocess.run([binary, "timing-check", log, "--show", "3"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        text=True)
-    head = c.stdout.splitlines()[0] if c.stdout else ""
-    if c.returncode != 0:
+    if c.returncode == 1:
         return False, "DIFFERENT (%s): %s" % (" ".join(sets), c.stdout.strip()[:600])
-    return True, head
+    if c.returncode != 0:
+        return False, "timing-check exit %d: %s" % (c.returncode, c.stdout.strip()[:300])
+    m = re.search(r"times compared \((\d+) pixels", c.stdout)
+    if not m:
+        return False, "timing-check said EQUAL without its count: %s" % c.stdout.strip()[:300]
+    return True, int(m.group(1))
 
 
 def main():
@@ -131,21 +136,28 @@ def main():
     if not 1 <= a.count <= 100000:
         fail("--count takes 1 to 100000, not %d" % a.count)
     folder = tempfile.mkdtemp(prefix="timing-random-")
-    passes = failures = pixels = 0
+    passes = failures = pixels = empty = 0
     try:
         keys = timed_keys(a.binary, folder)
+        if not any(k.endswith(".fifo_depth") for k in keys) or not any(k.endswith(".ii") for k in keys):
+            fail("no FIFO depth or II among the settings (%d keys): nothing would be varied" % len(keys))
         for k in ([a.only] if a.only is not None else range(a.count)):
             ok, what = one(a.binary, folder, keys, a.seed, k)
             if ok:
                 passes += 1
-                pixels += int(what.split("(")[1].split()[0]) if "(" in what else 0
+                pixels += what
+                empty += what == 0
             else:
                 failures += 1
                 print("FAIL configuration %d of seed %d (again: %s %s --seed %d --only %d): %s" % (
                     k, a.seed, sys.argv[0], a.binary, a.seed, k, what))
     finally:
         shutil.rmtree(folder, ignore_errors=True)
-    print("%d configurations, %d pixels compared at every block" % (passes + failures, pixels))
+    print("%d configurations, %d pixels compared at every block (%d configurations showed none)" % (
+        passes + failures, pixels, empty))
+    if a.only is None and passes and empty * 2 > passes:
+        failures += 1
+        print("FAIL most configurations showed no pixel: the scenes no longer test anything")
     print("%d passed, %d failed" % (passes, failures))
     sys.exit(1 if failures else 0)
 
