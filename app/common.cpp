@@ -212,15 +212,10 @@ int run_threads = 0;  // set_threads: 0 until set
 
 void set_threads(const std::string& text) {
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  if (text.empty()) {
-    run_threads = int(cores);
-    core::set_exr_threads(run_threads);
-    return;
-  }
   char* end = nullptr;
   errno = 0;
-  const long n = std::strtol(text.c_str(), &end, 10);
-  if (end == text.c_str() || *end != '\0' || errno != 0 || n < 1 || n > 1024)
+  const long n = text.empty() ? long(cores) : std::strtol(text.c_str(), &end, 10);
+  if (!text.empty() && (end == text.c_str() || *end != '\0' || errno != 0 || n < 1 || n > 1024))
     throw core::InputError("--threads", text,
                            "expected a count of threads from 1 to 1024 (this machine has " + std::to_string(cores) +
                                " cores)");

@@ -197,20 +197,22 @@ bad sweep-no-stats "no readable stats" sweep.py "$f/no-stats" "$src" --shard 0/1
 bad sweep-broken-stats "no readable stats" sweep.py "$f/broken-stats" "$src" --shard 0/1 --results r --match "$one"
 bad sweep-not-a-program "cannot run it" sweep.py "$f/text" "$src" --shard 0/1 --results r --match "$one"
 # SIGTERM (scancel, timeout) in the middle of a shard: the render killed, nothing left.
-fake sleeps "echo \$\$ >$f/sleeps.pid; exec sleep 3600"  # (killed with the shard, whenever that is)
+# The fake render says it started through a FIFO, then blocks on another that nobody
+# writes, until the shard's end kills it: the test waits for that event, no delay guessed.
+mkfifo "$f/started" "$f/hold"
+fake waits "echo \$\$ >$f/waits.pid; echo \$\$ >$f/started; exec cat $f/hold"
 before=$(snapshot)
-(cd "$work" && exec "$python" -S "$scripts/sweep.py" "$f/sleeps" "$src" --shard 0/1 --results r --match "$one" \
+(cd "$work" && exec "$python" -S "$scripts/sweep.py" "$f/waits" "$src" --shard 0/1 --results r --match "$one" \
    </dev/null >"$tmp/stdout" 2>"$tmp/stderr") &
 shard=$!
-for ((i = 0; i < 3000; i++)); do  # until the render runs (an event; 300 s at most)
-  [[ -e $work/r/shards/sweep-0-of-1.progress && -s $f/sleeps.pid ]] && break
-  sleep 0.1
-done
+read -r -t 300 _ <>"$f/started"  # (read-write: opening it never blocks; the read waits for the render)
+expect sweep-sigterm-render-started [ -s "$f/waits.pid" ]
+expect sweep-sigterm-progress-kept [ -e "$work/r/shards/sweep-0-of-1.progress" ]
 kill -TERM $shard
 wait $shard
 rc=$?
 expect sweep-sigterm-status [ $rc == 143 ]
-render_gone() { [[ -s $f/sleeps.pid ]] && ! kill -0 "$(<"$f/sleeps.pid")" 2>/dev/null; }
+render_gone() { [[ -s $f/waits.pid ]] && ! kill -0 "$(<"$f/waits.pid")" 2>/dev/null; }
 expect sweep-sigterm-render-killed render_gone
 expect sweep-sigterm-nothing-left [ "$(snapshot)" == "$before" ]
 expect sweep-sigterm-quiet [ ! -s "$tmp/stderr" ]
