@@ -3,11 +3,11 @@
 #include <ImfCompression.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
-#include <ImfStdIO.h>
 #include <ImfStringAttribute.h>
 #include <ImfTiledOutputFile.h>
 
 #include "shadetlm/core/bump_map.hpp"
+#include "shadetlm/core/exr_stream.hpp"
 #include "shadetlm/core/frame.hpp"
 #include "shadetlm/core/input_error.hpp"
 
@@ -16,17 +16,16 @@ namespace shadetlm::core {
 void write_mip_chain(const std::string& path, const Texture& base, const std::vector<Texture>& levels,
                      const std::vector<std::pair<std::string, std::string>>& attributes) {
   write_atomically(path, [&](const std::string& tmp) {
-    Imf::Header header(base.width, base.height);
-    header.compression() = Imf::ZIP_COMPRESSION;
-    header.setTileDescription(Imf::TileDescription(64, 64, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
-    for (const auto& [k, v] : attributes) header.insert(k, Imf::StringAttribute(v));
-    const char* names[3] = {"R", "G", "B"};
-    for (const char* n : names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
-    Imf::StdOSStream bytes;  // in memory, then checked writes (OpenEXR writes its offset table from a destructor that swallows a failed write)
-    {
-      Imf::TiledOutputFile out(bytes, header);
+    write_exr_stream(tmp, path, [&](Imf::OStream& stream) {
+      Imf::Header header(base.width, base.height);
+      header.compression() = exr_compression_in_force();
+      header.setTileDescription(Imf::TileDescription(64, 64, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
+      for (const auto& [k, v] : attributes) header.insert(k, Imf::StringAttribute(v));
+      const char* names[3] = {"R", "G", "B"};
+      for (const char* n : names) header.channels().insert(n, Imf::Channel(Imf::FLOAT));
+      Imf::TiledOutputFile out(stream, header);
       if (out.numLevels() != int(levels.size()) + 1)
-        throw std::runtime_error(path + ": the mip chain does not match the EXR's levels");
+        throw std::runtime_error("the mip chain does not match the EXR's levels");
       for (int l = 0; l < out.numLevels(); ++l) {
         const Texture& t = l == 0 ? base : levels[size_t(l) - 1];
         std::vector<float> planes[3];
@@ -41,10 +40,7 @@ void write_mip_chain(const std::string& path, const Texture& base, const std::ve
         out.setFrameBuffer(fb);
         out.writeTiles(0, out.numXTiles(l) - 1, 0, out.numYTiles(l) - 1, l);
       }
-    }
-    CheckedFile file(tmp, path);
-    file.write(bytes.str());
-    file.close();
+    });
   });
 }
 

@@ -11,7 +11,6 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
-#include <ImfStdIO.h>
 #include <ImfStringAttribute.h>
 #include <ImfThreading.h>
 #include <png.h>
@@ -21,6 +20,7 @@
 
 #include "shadetlm/core/input_file.hpp"
 #include "shadetlm/core/frame.hpp"
+#include "shadetlm/core/exr_stream.hpp"
 #include "shadetlm/core/input_error.hpp"
 #include "shadetlm/core/output.hpp"
 #include "shadetlm/core/texture.hpp"
@@ -103,11 +103,27 @@ class FileStream : public Imf::OStream {
 };
 }  // namespace
 
-void write_exr_to(const std::string& file, const std::string& output, const Frame& frame) {
+Imf::Compression exr_compression_in_force() { return exr_compression; }
+
+void write_exr_stream(const std::string& file, const std::string& output,
+                      const std::function<void(Imf::OStream&)>& write) {
   const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0) throw std::runtime_error(output + ": cannot write the file: " + std::strerror(errno));
   int error = 0;
   try {
+    FileStream stream(fd, output);
+    write(stream);  // (the offset table written as its output file is destroyed, inside)
+    error = stream.error();
+  } catch (const std::exception& e) {
+    ::close(fd);
+    throw std::runtime_error(output + ": cannot write the EXR: " + e.what());
+  }
+  if (::close(fd) != 0 && error == 0) error = errno;
+  if (error != 0) throw std::runtime_error(output + ": cannot write the file: " + std::strerror(error));
+}
+
+void write_exr_to(const std::string& file, const std::string& output, const Frame& frame) {
+  write_exr_stream(file, output, [&](Imf::OStream& stream) {
     Imf::Header header(frame.width, frame.height);
     header.compression() = exr_compression;
     for (const auto& [k, v] : frame.attributes) header.insert(k, Imf::StringAttribute(v));
@@ -116,19 +132,10 @@ void write_exr_to(const std::string& file, const std::string& output, const Fram
       header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
       fb.insert(c.name, Imf::Slice(Imf::FLOAT, (char*)c.values.data(), sizeof(float), sizeof(float) * frame.width));
     }
-    FileStream stream(fd, output);
-    {
-      Imf::OutputFile out(stream, header);
-      out.setFrameBuffer(fb);
-      out.writePixels(frame.height);
-    }  // (the offset table written here)
-    error = stream.error();
-  } catch (const std::exception& e) {
-    ::close(fd);
-    throw std::runtime_error(output + ": cannot write the EXR: " + e.what());
-  }
-  if (::close(fd) != 0 && error == 0) error = errno;
-  if (error != 0) throw std::runtime_error(output + ": cannot write the file: " + std::strerror(error));
+    Imf::OutputFile out(stream, header);
+    out.setFrameBuffer(fb);
+    out.writePixels(frame.height);
+  });
 }
 
 void write_exr(const std::string& path, const Frame& frame) {
