@@ -213,6 +213,14 @@ nlohmann::json phase_times(const Progress& progress) {
   return times;
 }
 
+// What the timing log was rendered from, for the timing check to derive the walks from:
+// `scene <file>` (none: the built-in demo) and a `set <key=value>` record per override.
+std::string timing_log_head(const SceneOptions& scene) {
+  std::string head = "scene " + scene.scene + "\n";
+  for (const std::string& s : scene.overrides) head += "set " + s + "\n";
+  return head;
+}
+
 // Writes the frame, its preview and heat map, the timing log and the statistics (with
 // the phases' times: "write" so far is encoding and writing everything before them)
 // beside the inspection files the pipeline wrote into `outputs`, and commits them all:
@@ -220,7 +228,7 @@ nlohmann::json phase_times(const Progress& progress) {
 void write_outputs(const RenderOptions& opt, const modules::RenderResult& r, nlohmann::json& stats,
                    core::OutputSet& outputs, const Progress& progress) {
   add_frame(outputs, r.frame, opt.output, opt.preview, opt.heat_map, opt.heat_max);
-  if (!opt.timing_log.empty()) outputs.write(opt.timing_log, r.timing_log);
+  if (!opt.timing_log.empty()) outputs.write(opt.timing_log, timing_log_head(opt.scene) + r.timing_log);
   stats["phases_s"] = phase_times(progress);
   // (text from the command line need not be UTF-8: replaced, not refused after the render)
   if (!opt.stats.empty()) outputs.write(opt.stats, stats.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");

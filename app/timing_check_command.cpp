@@ -1,8 +1,10 @@
 // shadetlm timing-check LOG: runs the clocked timing reference (timing_reference/) on
 // the work recorded in a timing log (`shadetlm render --timing-log LOG`) and compares
-// every pixel's start and hand-over at every block, each triangle's times, the pass's
-// end and the blocks' busy, starved and blocked cycles and FIFO figures with the fast
-// model's. Exit 0: all equal; 1: some differ.
+// every pixel's start and hand-over at every block, each triangle's times, the passes'
+// ends and the blocks' busy, starved and blocked cycles and FIFO figures with the fast
+// model's. The triangles setup hands on and drops and each one's walk come from the
+// scene the log names (or --scene and --set), not from the log, which is held to them.
+// Exit 0: all equal; 1: some differ.
 //
 // --rtl-normalize MODE puts the RTL normalize unit of that mode (docs/rtl.md) in place
 // of the reference's own unit for the normalize block, in lockstep with its clock;
@@ -15,6 +17,7 @@
 #include "shadetlm/core/output.hpp"
 #include "shadetlm/modules/normalize/normalize_kernel.hpp"
 #include "shadetlm/timing_reference/clocked.hpp"
+#include "shadetlm/timing_reference/scene_walk.hpp"
 #ifdef SHADETLM_HAVE_RTL
 #include "shadetlm/rtl/normalize/normalize_unit_pins.hpp"
 #endif
@@ -42,6 +45,29 @@ void check_rtl_log(const timing_reference::Workload& w, const std::string& log, 
 }  // namespace
 #endif
 
+namespace {
+// The scene's walk (timing_reference/scene_walk.hpp) in the log's place: the scene
+// `scene` with `sets`, or else the log's scene and set records. Returns the differences
+// between the log and the scene, described ("" if none).
+std::string walk_from_scene(timing_reference::Workload& w, const std::string& log, const std::string& scene,
+                            const std::vector<std::string>& sets, size_t show) {
+  SceneOptions options;
+  options.scene = scene.empty() ? w.scene : scene;
+  options.given = !scene.empty();
+  options.overrides = scene.empty() && sets.empty() ? w.sets : sets;
+  if (scene.empty() && !w.scene_given)
+    throw core::InputError(log, "scene", "no scene record (a log of an older build?): give --scene and --set");
+  const core::Scene s = options.load();
+  w.reject_cycles = settings_of(s).integer("setup.reject_cycles");
+  std::string report;
+  const size_t differences = timing_reference::apply_walk(timing_reference::derive_walks(s), w, report, show);
+  if (timing_reference::serial_cycles(w) > 1e11)
+    throw core::InputError(log, "", "more than 10^11 cycles to step: too long to check");
+  if (differences == 0) return "";
+  return "  " + std::to_string(differences) + " differences between the log and the scene's walk\n" + report;
+}
+}  // namespace
+
 Command add_timing_check_command(CLI::App& app) {
   auto log = std::make_shared<std::string>();
   auto show = std::make_shared<size_t>(10);
@@ -55,8 +81,15 @@ Command add_timing_check_command(CLI::App& app) {
       ->check(CLI::IsMember(modules::normalize_mode_names()));
   cmd->add_option("--rtl-vcd", *rtl_vcd, "trace the RTL unit's pins and registers to this VCD file")
       ->needs("--rtl-normalize");
-  return {cmd, [log, show, rtl_mode, rtl_vcd]() {
-            const timing_reference::Workload w = timing_reference::read_workload(*log);
+  auto scene = std::make_shared<std::string>();
+  auto sets = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--scene", *scene, "the scene the log was rendered from (default: the log's scene record)");
+  cmd->add_option("--set", *sets, "the render's overrides, key=value (default: the log's set records)")
+      ->take_all()
+      ->allow_extra_args(false);
+  return {cmd, [log, show, rtl_mode, rtl_vcd, scene, sets]() {
+            timing_reference::Workload w = timing_reference::read_workload(*log);
+            const std::string walk_report = walk_from_scene(w, *log, *scene, *sets, *show);
             std::unique_ptr<core::Temporary> vcd;  // the trace, renamed into place once whole
             std::unique_ptr<timing_reference::UnitPins> pins;
             if (!rtl_mode->empty()) {
@@ -79,9 +112,9 @@ Command add_timing_check_command(CLI::App& app) {
             pins.reset();  // (closes the trace)
             if (vcd) vcd->commit();
             std::string report;
-            const bool equal = timing_reference::compare(w, m, report, *show);
-            std::cout << *log << ": " << report << "  clocked reference: " << m.end << " cycles stepped in "
-                      << m.wall_s << " s\n"
+            const bool equal = timing_reference::compare(w, m, report, *show) && walk_report.empty();
+            std::cout << *log << ": " << report << walk_report << "  clocked reference: " << m.end
+                      << " cycles stepped in " << m.wall_s << " s\n"
                       << (equal ? "EQUAL" : "DIFFERENT") << "\n";
             return equal ? 0 : 1;
           }};

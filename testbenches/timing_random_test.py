@@ -34,7 +34,8 @@ def fail(message):
 def random_scene(rng):
     """A small scene: 1-3 objects of random shapes and paths, 1-3 lights."""
     width = rng.randint(16, 64)
-    scene = {"camera": {"position": [rng.uniform(-1, 1), rng.uniform(-0.5, 1.5), rng.uniform(3, 5)],
+    # (A camera as near as 1.2 clips objects against the near plane and the guard band.)
+    scene = {"camera": {"position": [rng.uniform(-1, 1), rng.uniform(-0.5, 1.5), rng.uniform(1.2, 5)],
                         "target": [0, 0, 0], "resolution": [width, rng.randint(12, 48)],
                         "local_viewer": rng.random() < 0.5},
              "lights": [], "textures": {
@@ -61,6 +62,8 @@ def random_scene(rng):
                              "rotate": [rng.uniform(-60, 60), rng.uniform(-60, 60), 0]}}
         if shape == "sphere":
             obj["radius"] = rng.uniform(0.3, 1)
+        if rng.random() < 0.5:
+            obj["cull"] = "back"
         scene["objects"].append(obj)
     return scene
 
@@ -77,6 +80,8 @@ def random_settings(rng, keys):
             sets.append("pipeline.%s=%d" % (key, rng.randint(1, 6)))
         elif key.endswith(".latency") and key != "memory.latency":
             sets.append("pipeline.%s=%d" % (key, rng.randint(1, 40)))
+    if rng.random() < 0.5:
+        sets.append("pipeline.setup.reject_cycles=%d" % rng.randint(1, 8))
     sets.append("pipeline.normalize.mode=" + rng.choice(["exact", "forward-difference", "rsqrt0", "rsqrt1", "rsqrt2"]))
     sets.append("pipeline.normalize.seed=" + rng.choice(["packet", "line"]))
     sets.append("pipeline.elaborate=" + rng.choice(["needed", "all"]))
@@ -104,8 +109,9 @@ def one(binary, folder, keys, seed, k):
     with open(path, "w") as f:
         json.dump(scene, f)
     log = os.path.join(folder, "t.log")
+    stats = os.path.join(folder, "s.json")
     cmd = [binary, "render", path, "-o", os.path.join(folder, "f.exr"), "--timing-log", log, "--allow-overflow",
-           "--allow-nonfinite"]
+           "--allow-nonfinite", "--stats", stats]
     for s in sets:
         cmd += ["--set", s]
     r = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
@@ -120,7 +126,9 @@ def one(binary, folder, keys, seed, k):
     m = re.search(r"times compared \((\d+) pixels", c.stdout)
     if not m:
         return False, "timing-check said EQUAL without its count: %s" % c.stdout.strip()[:300]
-    return True, int(m.group(1))
+    with open(stats) as f:
+        triangles = json.load(f)["triangles"]
+    return True, (int(m.group(1)), triangles["in"] > triangles["drawn"])
 
 
 def main():
@@ -136,7 +144,7 @@ def main():
     if not 1 <= a.count <= 100000:
         fail("--count takes 1 to 100000, not %d" % a.count)
     folder = tempfile.mkdtemp(prefix="timing-random-")
-    passes = failures = pixels = empty = 0
+    passes = failures = pixels = empty = dropping = 0
     try:
         keys = timed_keys(a.binary, folder)
         if not any(k.endswith(".fifo_depth") for k in keys) or not any(k.endswith(".ii") for k in keys):
@@ -145,19 +153,23 @@ def main():
             ok, what = one(a.binary, folder, keys, a.seed, k)
             if ok:
                 passes += 1
-                pixels += what
-                empty += what == 0
+                pixels += what[0]
+                empty += what[0] == 0
+                dropping += what[1]
             else:
                 failures += 1
                 print("FAIL configuration %d of seed %d (again: %s %s --seed %d --only %d): %s" % (
                     k, a.seed, sys.argv[0], a.binary, a.seed, k, what))
     finally:
         shutil.rmtree(folder, ignore_errors=True)
-    print("%d configurations, %d pixels compared at every block (%d configurations showed none)" % (
-        passes + failures, pixels, empty))
+    print("%d configurations, %d pixels compared at every block (%d configurations showed none; "
+          "%d had triangles culled or clipped away)" % (passes + failures, pixels, empty, dropping))
     if a.only is None and passes and empty * 2 > passes:
         failures += 1
         print("FAIL most configurations showed no pixel: the scenes no longer test anything")
+    if a.only is None and passes >= 10 and dropping * 4 < passes:
+        failures += 1
+        print("FAIL fewer than a quarter of the configurations dropped a triangle: setup's rejections go untested")
     print("%d passed, %d failed" % (passes, failures))
     sys.exit(1 if failures else 0)
 

@@ -86,7 +86,7 @@ class Unit : public sc_core::sc_module {
   bool handing_over() const { return out_.valid.read() && out_.ready.read(); }
   void hand_over(int64_t t) {
     (*handed)[size_t(held_.front().item)] = t;
-    last = t;
+    last = std::max(last, t);
     ++handed_count;
     held_.pop_front();
   }
@@ -104,24 +104,44 @@ class Unit : public sc_core::sc_module {
   int64_t free_ = 0, starved_ = 0, blocked_ = 0;
 };
 
-// Setup: a triangle every II cycles, handed on to the raster's triangle FIFO.
+// Setup: a triangle every II cycles, handed on to the raster's triangle FIFO; before
+// each, the triangles it dropped (the scene's: SceneWalk), each `reject_cycles` of its
+// unit, needing no register.
 class Source : public Unit {
  public:
-  Source(sc_core::sc_module_name name, const BlockSpec& spec, Link& out, size_t triangles, std::vector<int64_t>& start)
-      : Unit(name, spec, out), triangles_(triangles), start_(start) {}
+  Source(sc_core::sc_module_name name, const Workload& w, Link& out, std::vector<int64_t>& start)
+      : Unit(name, w.blocks[0], out), w_(w), start_(start) {
+    rejects_left_ = rejects_before(0);
+  }
+  bool done() const { return next_ == w_.triangles.size() && rejects_left_ == 0; }
 
  private:
+  int64_t rejects_before(size_t k) const {
+    if (w_.reject_cycles == 0) return 0;
+    return k < w_.triangles.size() ? w_.triangles[k].rejected_before : w_.rejected_after;
+  }
   void edge() override {
     const int64_t t = cycle_now();
     const bool out = handing_over();
-    if (t >= free_ && next_ < triangles_) {
-      if (room()) start_[next_] = t, issue(t, int64_t(next_), 1), ++next_;
-      else blocked_ += 1;
+    if (t >= free_ && rejects_left_ > 0) {
+      free_ = t + w_.reject_cycles;
+      stats.busy += w_.reject_cycles;
+      last = std::max(last, free_ - 1);
+      --rejects_left_;
+    } else if (t >= free_ && next_ < w_.triangles.size()) {
+      if (room()) {
+        start_[next_] = t, issue(t, int64_t(next_), 1), ++next_;
+        rejects_left_ = rejects_before(next_);
+      } else {
+        blocked_ += 1;
+      }
     }
     if (out) hand_over(t);
     drive_output(t);
   }
-  size_t triangles_, next_ = 0;
+  const Workload& w_;
+  size_t next_ = 0;
+  int64_t rejects_left_ = 0;
   std::vector<int64_t>& start_;
 };
 
@@ -405,6 +425,19 @@ class Monitor : public sc_core::sc_module {
   int64_t bound_;
 };
 
+// A frame pass's block (the splat pass), timed as a whole: it begins at the main pass's
+// end and is busy II·work cycles, then its latency. Returns the first cycle it is done.
+int64_t run_pass(const PassLine& p, Measured& m) {
+  Measured::Pass r;
+  if (p.work >= 0) {
+    r.arrival = m.main_end;
+    r.busy = p.ii * p.work;
+    r.last = r.arrival + r.busy + p.latency - 1;
+  }
+  m.passes.push_back(r);
+  return r.last + 1;
+}
+
 }  // namespace
 
 Measured run_clocked(const Workload& w, const std::string& pins_block, UnitPins* pins) {
@@ -418,7 +451,7 @@ Measured run_clocked(const Workload& w, const std::string& pins_block, UnitPins*
   sc_core::sc_clock clk("clk", kPeriod);
   std::vector<std::unique_ptr<Link>> links;
   for (size_t j = 0; j <= line; ++j) links.push_back(std::make_unique<Link>());
-  Source setup("setup", w.blocks[0], *links[0], triangles, m.setup_start);
+  Source setup("setup", w, *links[0], m.setup_start);
   setup.handed = &m.setup_handed;
   std::unique_ptr<DramUnit> dram;
   if (w.memory) {
@@ -450,7 +483,7 @@ Measured run_clocked(const Workload& w, const std::string& pins_block, UnitPins*
   for (auto& l : links) l->ready.write(true);
   const int64_t bound = int64_t(serial_cycles(w));  // no run can reach it (read_workload keeps it small)
   const Unit& last_block = units.empty() ? static_cast<const Unit&>(raster) : *units.back();
-  auto done = [&] { return raster.done() && last_block.handed_count == pixels; };
+  auto done = [&] { return setup.done() && raster.done() && last_block.handed_count == pixels; };
   Monitor monitor("monitor", done, bound);
   monitor.clk(clk);
 
@@ -461,6 +494,8 @@ Measured run_clocked(const Workload& w, const std::string& pins_block, UnitPins*
   m.end = std::max(raster.walk_end(), setup.last + 1);
   m.end = std::max(m.end, raster.last + 1);
   for (auto& u : units) m.end = std::max(m.end, u->last + 1);
+  m.main_end = m.end;
+  for (const PassLine& p : w.passes) m.end = std::max(m.end, run_pass(p, m));
   m.stats.push_back(setup.stats);
   m.stats.push_back(raster.stats);
   for (auto& u : units) m.stats.push_back(u->stats);
@@ -492,7 +527,14 @@ bool compare(const Workload& w, const Measured& m, std::string& report, size_t s
       check(p.handed[j], m.handed[j][n], name + ", hand-over");
     }
   }
-  check(w.end, m.end, "the pass's end");
+  check(w.end, m.main_end, "the main pass's end");
+  for (size_t k = 0; k < w.passes.size() && k < m.passes.size(); ++k) {
+    const PassLine& p = w.passes[k];
+    check(p.arrival, m.passes[k].arrival, p.name + " pass begins");
+    check(p.busy, m.passes[k].busy, p.name + " busy cycles");
+    check(p.last, m.passes[k].last, p.name + " last cycle");
+  }
+  if (w.frame_end >= 0) check(w.frame_end, m.end, "the frame's cycles");
   if (w.stats.size() != m.stats.size()) {
     ++mismatches;
     out << "  the log has statistics of " << w.stats.size() << " blocks, the pass " << m.stats.size() << "\n";

@@ -18,7 +18,12 @@ struct Measured {
   std::vector<std::vector<int64_t>> start, valid, handed;  // [raster, span blocks…][pixel]
   std::vector<int64_t> setup_start, setup_handed, taken;  // per triangle
   std::vector<BlockStatsLine> stats;                      // setup, the raster, the span blocks
-  int64_t end = 0;       // the first cycle at which every block is done
+  int64_t main_end = 0;  // the first cycle at which every block of the main pass is done
+  struct Pass {
+    int64_t arrival = -1, busy = 0, last = -1;
+  };
+  std::vector<Pass> passes;  // the frame passes' (Workload::passes)
+  int64_t end = 0;       // the first cycle at which every block of every pass is done
   bool finished = false; // false: stopped at the cycle bound (a deadlock)
   double wall_s = 0;
   std::string pins_block;  // a span block whose unit was pins (UnitPins): its busy, starved and blocked not kept

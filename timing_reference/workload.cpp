@@ -34,7 +34,12 @@ Workload read_workload(const std::string& path) {
     std::istringstream s(line);
     std::string kind;
     s >> kind;
-    if (kind == "block") {
+    if (kind == "scene" || kind == "set") {  // the rest of the line, as written
+      if (!w.blocks.empty()) fail("a " + kind + " record after the first block");
+      const std::string value = line.size() > kind.size() + 1 ? line.substr(kind.size() + 1) : "";
+      if (kind == "scene") w.scene = value, w.scene_given = true;
+      else w.sets.push_back(value);
+    } else if (kind == "block") {
       BlockSpec b;
       s >> b.name >> b.latency >> b.ii >> b.depth;
       constexpr int64_t kMost = 1000000;
@@ -119,6 +124,24 @@ Workload read_workload(const std::string& path) {
       if (!s) fail("expected: stats <name> <busy> <starved> <blocked> <fifo_cycles> <fifo_peak> [<memory_stall>]");
       s >> b.memory_stall;
       w.stats.push_back(b);
+    } else if (kind == "walked") {
+      LoggedCounts& c = w.counts;
+      s >> c.walked >> c.hidden >> c.add >> c.mul >> c.div;
+      if (!s || c.walked < 0 || c.hidden < 0) fail("expected: walked <pixels> <hidden> <add> <mul> <div>");
+      c.given = true;
+    } else if (kind == "shaded") {
+      std::pair<std::string, int64_t> b;
+      if (!(s >> b.first >> b.second) || b.second < 0) fail("expected: shaded <block> <pixels>");
+      w.counts.shaded.push_back(b);
+    } else if (kind == "pass") {
+      PassLine p;
+      s >> p.name >> p.latency >> p.ii >> p.arrival >> p.work >> p.busy >> p.last;
+      if (!s || p.latency < 1 || p.ii < 1 || p.latency > 1000000 || p.ii > 1000000 || p.work < -1 ||
+          p.work > (int64_t(1) << 40))
+        fail("expected: pass <name> <latency> <ii> <arrival> <work> <busy> <last>, latency and ii in 1 … 1000000");
+      w.passes.push_back(p);
+    } else if (kind == "frame_end") {
+      if (!(s >> w.frame_end) || w.frame_end < 0) fail("expected: frame_end <cycle ≥ 0>");
     } else if (!kind.empty()) {
       fail("unknown record '" + kind + "'");
     }
@@ -138,6 +161,9 @@ double serial_cycles(const Workload& w) {
     for (size_t j = 0; j < p.work.size(); ++j) bound += double(p.work[j]) * double(w.blocks[j + 2].ii);
   }
   for (const Triangle& t : w.triangles) bound += double(t.trailing) * double(w.blocks[1].ii);
+  double rejected = double(w.rejected_after);
+  for (const Triangle& t : w.triangles) rejected += double(t.rejected_before);
+  bound += rejected * double(w.reject_cycles);
   if (!w.memory) return bound;
   // Every request alone: its bytes at the DRAM's rate, then its latency.
   auto request = [&](double lines, int64_t line_bytes) {

@@ -30,6 +30,7 @@ struct Pixel {
 
 struct Triangle {
   uint32_t id = 0;
+  int64_t rejected_before = 0;  // triangles setup dropped just before it (from the scene: SceneWalk)
   int64_t start = 0, handed = 0, taken = 0;  // the fast model's: at setup, by the raster
   size_t first_pixel = 0, pixels = 0;
   int64_t trailing = 0;  // hidden steps after its last pixel
@@ -47,13 +48,36 @@ struct MemorySpec {
   int64_t latency = 0, bytes_per_cycle = 0;
 };
 
+// A frame pass's block (the splat pass): it begins when the main pass ends and is busy
+// II·work cycles; the fast model's figures.
+struct PassLine {
+  std::string name;
+  int64_t latency = 1, ii = 1, arrival = -1, work = -1, busy = 0, last = -1;  // work −1: not run
+};
+
+// The statistics the log's pixels must agree with (the render's, not its timing's).
+struct LoggedCounts {
+  bool given = false;
+  int64_t walked = 0, hidden = 0;     // the raster's pixels walked and hidden
+  int64_t add = 0, mul = 0, div = 0;  // the raster's operations
+  std::vector<std::pair<std::string, int64_t>> shaded;  // per span block: pixels worked
+};
+
 struct Workload {
+  std::string scene;              // what the render drew (`scene` record; "": the demo)
+  bool scene_given = false;
+  std::vector<std::string> sets;  // its --set overrides
   std::vector<BlockSpec> blocks;  // setup, the raster, the span blocks
+  int64_t reject_cycles = 0;      // setup's cycles for a triangle it drops (from the scene)
+  int64_t rejected_after = 0;     // triangles dropped after the last one handed on
   std::optional<MemorySpec> memory;  // none: ideal memory
   std::vector<Triangle> triangles;
   std::vector<Pixel> pixels;
   int64_t end = -1;                     // the fast model's (−1: no end record)
   std::vector<BlockStatsLine> stats;    // the fast model's
+  LoggedCounts counts;                  // the render's statistics
+  std::vector<PassLine> passes;         // the fast model's
+  int64_t frame_end = -1;               // the fast model's frame cycles (−1: not given)
 };
 
 // Reads a timing log; throws core::InputError naming the file and line (a record out of

@@ -65,6 +65,12 @@ class BlockInfo : public TimedObserver {
   // (Inspection, once a packet's pixels are timed: TimedObserver::timed.)
   // Keep utilization over time in bins of `cycles`.
   virtual void keep_histogram(uint64_t cycles) = 0;
+  // A frame pass's block (texel_project): the cycle the pass began (the main pass's end)
+  // and the work it scheduled, for the timing log (−1: not run; not a frame pass).
+  struct PassWork {
+    int64_t arrival = -1, work = -1;
+  };
+  virtual PassWork pass_work() const { return {}; }
 
   // Its place in a chain: the socket packets come in by (none at a pass's source), and
   // its output bound to the next block's input (left unbound at the end of the chain).

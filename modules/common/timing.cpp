@@ -227,8 +227,15 @@ int64_t TriangleLine::next() {
   handed_[k_ & mask_] = d;
   last_start_ = s;
   last_d_ = d;
-  t_.last = d;
+  t_.last = std::max(t_.last, d);
   return d;
+}
+
+void TriangleLine::reject(uint64_t count, uint64_t cycles) {
+  if (count == 0) return;
+  t_.add_busy(free_, count * cycles);
+  free_ += int64_t(count * cycles);
+  t_.last = std::max(t_.last, free_ - 1);
 }
 
 void TriangleLine::taken(int64_t cycle) {

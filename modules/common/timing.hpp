@@ -102,6 +102,14 @@ class PixelLine;
 //   e <steps>                                     hidden steps after the triangle's last pixel
 //   end <cycle>                                   the pass's end
 //   stats <name> <busy> <starved> <blocked> <fifo_cycles> <fifo_peak> <memory_stall>
+//   walked <pixels> <hidden> <add> <mul> <div>    the raster's statistics: pixels walked and
+//                                                 hidden, its operations
+//   shaded <name> <pixels>                        a span block's statistics: pixels it worked
+//   pass <name> <latency> <ii> <arrival> <work> <busy> <last>
+//                                                 a frame pass's block (the splat pass): when
+//                                                 it began, its work, busy cycles, last cycle
+//   frame_end <cycle>                             the frame's cycles (every pass)
+// (The render puts `scene <file>` and `set <key=value>` records in front: what it drew.)
 class TimingLog {
  public:
   void block(const std::string& name, const Timing& t);
@@ -113,6 +121,7 @@ class TimingLog {
   void hidden_lines(uint64_t step, uint32_t lines);
   void end(int64_t cycle);
   void stats(const std::string& name, const BlockTimes& t);
+  void record(const std::string& line) { text_ += line + "\n"; }  // (the statistics' records)
   const std::string& text() const { return text_; }
 
  private:
@@ -213,7 +222,10 @@ class PixelLine {
 
 // Setup's triangles into the raster's triangle FIFO: triangle k starts when setup's unit
 // is free and a register is, and is handed on when done and the FIFO had room — it had
-// when the raster took triangle k − b at least a cycle before.
+// when the raster took triangle k − b at least a cycle before. A triangle setup drops
+// (culled, clipped away) starts when the unit is free, needs no register (it leaves in
+// the unit's first stage) and keeps the unit `cycles` cycles; setup's `last` is then the
+// later of its last hand-over and the last such cycle.
 class TriangleLine {
  public:
   TriangleLine(Timing setup, uint64_t raster_depth);
@@ -221,6 +233,8 @@ class TriangleLine {
   int64_t next();
   // The raster took triangle k at `cycle`.
   void taken(int64_t cycle);
+  // `count` triangles dropped, each `cycles` cycles of the unit, before the next.
+  void reject(uint64_t count, uint64_t cycles);
   int64_t last_start() const { return last_start_; }
   const BlockTimes& times() const { return t_; }
   BlockTimes& times() { return t_; }

@@ -260,6 +260,27 @@ void write_timeline(core::OutputSet& outputs, Top& top, const RenderResult& r, c
 
 constexpr uint64_t kFirstView = 256;  // cycles the waveform view opens on
 
+namespace {
+// The statistics the timing check holds the log's pixels against (the raster's walk, the
+// pixels each span block worked), the frame passes' work and the frame's cycles.
+void log_statistics(TimingLog& log, const RenderResult& r, const Top& top) {
+  const size_t line = top.line().size();
+  const Ops& ops = r.blocks[1].stats.ops;
+  log.record("walked " + std::to_string(r.pixels_walked) + " " + std::to_string(r.pixels_hidden) + " " +
+             std::to_string(ops.add) + " " + std::to_string(ops.mul) + " " + std::to_string(ops.div));
+  for (size_t i = 2; i <= line; ++i)
+    log.record("shaded " + r.blocks[i].name + " " + std::to_string(r.blocks[i].stats.pixels));
+  for (size_t i = line + 1; i < top.modules().size(); ++i) {
+    const BlockInfo& m = *top.modules()[i];
+    const BlockInfo::PassWork w = m.pass_work();
+    log.record("pass " + m.block_name() + " " + std::to_string(m.timing().latency) + " " +
+               std::to_string(m.timing().ii) + " " + std::to_string(w.arrival) + " " + std::to_string(w.work) + " " +
+               std::to_string(m.times().busy) + " " + std::to_string(m.times().last));
+  }
+  log.record("frame_end " + std::to_string(r.frame_cycles));
+}
+}  // namespace
+
 RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
   if (inspect.progress) pipeline.blocks()[0].block->set_progress(inspect.progress);
   const double clock_mhz = pipeline.clock_mhz();
@@ -293,6 +314,7 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
     const auto& m = top.modules();
     log->end(std::max(top.line().end(), m[0]->times().last + 1));
     for (size_t i = 0; i <= top.line().size(); ++i) log->stats(m[i]->block_name(), m[i]->times());
+    log_statistics(*log, r, top);
     r.timing_log = log->text();
   }
   core::OutputSet own;  // (when the caller has none)

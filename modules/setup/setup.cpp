@@ -35,6 +35,7 @@ void Setup::run() {
   tlm::tlm_generic_payload trans;
   trans.set_command(tlm::TLM_WRITE_COMMAND);
   kernel_.run([&](const TriangleSetup& t) {
+    line_.reject(kernel_.take_rejected(), kernel_.reject_cycles);  // the triangles dropped before it
     const int64_t handed = line_.next();
     ++stats_.packets;
     if (kTracing && timeline_ && traced(t)) timeline_->add_triangle(track_, uint64_t(line_.last_start()), timing_.ii, t.id);
@@ -53,6 +54,7 @@ void Setup::run() {
     quantum_.set(period_ * double(line_.last_start() + int64_t(timing_.ii)) - now);
     if (quantum_.need_sync()) quantum_.sync();
   });
+  line_.reject(kernel_.take_rejected(), kernel_.reject_cycles);
   quantum_.sync();
   // Every transaction is a blocking call: the blocks downstream are done with the frame.
   PassEnd end;

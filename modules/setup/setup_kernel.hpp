@@ -11,6 +11,7 @@
 // 1/w. Vertex transformation, clipping and snapping follow core/coverage.hpp, the
 // convention shared with the golden model, and are not counted as setup operations.
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "shadetlm/modules/common/packet.hpp"
@@ -52,6 +53,11 @@ class SetupKernel {
   void set_progress(std::function<void(double)> progress) { progress_ = std::move(progress); }
   uint64_t triangles_in() const { return triangles_in_; }
   uint64_t triangles_out() const { return triangles_out_; }
+  // The scene's triangles dropped (culled, clipped away, no pixel covered) since this was
+  // last called: a triangle none of whose clipped pieces is handed on counts once.
+  uint64_t take_rejected() { return std::exchange(rejected_, 0); }
+  // Cycles setup's unit spends on a triangle it drops (setup.reject_cycles).
+  uint64_t reject_cycles = 2;
 
  private:
   struct Vertex {  // a vertex of a clipped piece: exact (double) from the clipper
@@ -93,7 +99,7 @@ class SetupKernel {
   std::vector<int> point_lights_;
   bool local_viewer_;
   Ops ops_;
-  uint64_t triangles_in_ = 0, triangles_out_ = 0;
+  uint64_t triangles_in_ = 0, triangles_out_ = 0, rejected_ = 0;
   TriangleSetup current_;
   std::function<void(double)> progress_;
   glm::dvec3 pu_{0}, pv_{0};      // of the current triangle (bump paths)
@@ -123,7 +129,10 @@ void SetupKernel::run(Emit&& emit) {
       // model skips it too), even if snapping gives its screen image some area.
       const glm::dvec3 ng = glm::cross(mesh.positions[idx[1]] - mesh.positions[idx[0]],
                                        mesh.positions[idx[2]] - mesh.positions[idx[0]]);
-      if (!(glm::dot(ng, ng) > 0)) continue;
+      if (!(glm::dot(ng, ng) > 0)) {
+        ++rejected_;
+        continue;
+      }
       if (bump) {  // P1 − P0 = Pu du1 + Pv dv1, P2 − P0 = Pu du2 + Pv dv2; zero without uv area
         const glm::dvec2 t1 = mesh.uvs[idx[1]] - mesh.uvs[idx[0]], t2 = mesh.uvs[idx[2]] - mesh.uvs[idx[0]];
         const glm::dvec3 e1 = mesh.positions[idx[1]] - mesh.positions[idx[0]];
@@ -135,6 +144,7 @@ void SetupKernel::run(Emit&& emit) {
       glm::dvec4 clip[3];
       for (int k = 0; k < 3; ++k) clip[k] = view_projection_ * glm::dvec4(mesh.positions[idx[k]], 1.0);
       const auto poly = core::clip_triangle(clip[0], clip[1], clip[2]);
+      bool handed = false;  // a piece of it handed on
       for (size_t p = 1; p + 1 < poly.size(); ++p) {
         const core::ClipVertex* cv[3] = {&poly[0], &poly[p], &poly[p + 1]};
         glm::dvec2 s[3];
@@ -160,8 +170,10 @@ void SetupKernel::run(Emit&& emit) {
         if (!setup(v, coverage, current_)) continue;
         current_.id = id++;
         ++triangles_out_;
+        handed = true;
         emit(static_cast<const TriangleSetup&>(current_));
       }
+      rejected_ += !handed;
     }
   }
 }

@@ -24,6 +24,7 @@ void TexelProject::b_transport(tlm::tlm_generic_payload& trans, sc_core::sc_time
   if (e.framebuffer) {
     kernel_.run(*e.framebuffer);
     schedule_.occupy(e.cycle, kernel_.cycles());
+    pass_ = {int64_t(e.cycle), int64_t(kernel_.cycles())};
   }
   e.cycle = std::max(e.cycle, uint64_t(schedule_.times().last + 1));
   if (out.size() > 0) out->b_transport(trans, delay);

@@ -20,6 +20,7 @@ class TexelProject : public sc_core::sc_module, public BlockInfo, public PacketT
   const Timing& timing() const override { return schedule_.timing(); }
   const BlockTimes& times() const override { return schedule_.times(); }
   void keep_histogram(uint64_t cycles) override { schedule_.times().bin_cycles = cycles; }
+  PassWork pass_work() const override { return pass_; }
   tlm::tlm_target_socket<32>* input() override { return &in; }
   void bind_output(tlm::tlm_target_socket<32>& next) override { out.bind(next); }
 
@@ -28,6 +29,7 @@ class TexelProject : public sc_core::sc_module, public BlockInfo, public PacketT
 
   TexelProjectKernel& kernel_;
   Schedule schedule_;
+  PassWork pass_;
 };
 
 }  // namespace shadetlm::modules
