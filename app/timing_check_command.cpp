@@ -89,7 +89,6 @@ Command add_timing_check_command(CLI::App& app) {
       ->allow_extra_args(false);
   return {cmd, [log, show, rtl_mode, rtl_vcd, scene, sets]() {
             timing_reference::Workload w = timing_reference::read_workload(*log);
-            const std::string walk_report = walk_from_scene(w, *log, *scene, *sets, *show);
             std::unique_ptr<core::Temporary> vcd;  // the trace, renamed into place once whole
             std::unique_ptr<timing_reference::UnitPins> pins;
             if (!rtl_mode->empty()) {
@@ -108,6 +107,8 @@ Command add_timing_check_command(CLI::App& app) {
                                      "this build has no RTL (built without Verilator, or with SHADETLM_RTL=OFF)");
 #endif
             }
+            // (After the RTL's checks of the log as written: its packet starts, its units.)
+            const std::string walk_report = walk_from_scene(w, *log, *scene, *sets, *show);
             const timing_reference::Measured m = timing_reference::run_clocked(w, "normalize", pins.get());
             pins.reset();  // (closes the trace)
             if (vcd) vcd->commit();
