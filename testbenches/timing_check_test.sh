@@ -64,6 +64,11 @@ check "bump, all blocks, slow end" 1 "$src/golden/bump-knot/scene.json" --set pi
 # A fast setup into a raster FIFO of one triangle, the forward-difference seed per packet.
 check "setup against the raster's FIFO" 1 "$src/golden/demo/scene.json" --set pipeline.setup.ii=1 \
   --set pipeline.setup.latency=1 --set pipeline.raster.fifo_depth=1 --set pipeline.normalize.mode=forward-difference
+# Long packets, timed in chunks of the shallowest FIFO (modules/common/timing.hpp): a
+# steady stream, and one that back-pressure shapes.
+check "sphere at 320x240, long packets" 0 "$src/golden/sphere/scene.json" --set 'camera.resolution=[320,240]'
+check "long packets behind a slow lighting" 1 "$src/golden/point-light/scene.json" --set 'camera.resolution=[320,240]' \
+  --set pipeline.lighting.ii=4 --set pipeline.lighting.fifo_depth=3 --set pipeline.normalize.mode=forward-difference
 # Textures: taps per pixel vary with the footprint.
 check "texture taps, FIFOs of 1" 1 "$src/golden/texture-screen/scene.json" --set pipeline.texture_fetch.filter=anisotropic \
   --set pipeline.texture_fetch.fifo_depth=1 --set pipeline.lighting.ii=3 --set pipeline.normalize.mode=rsqrt2

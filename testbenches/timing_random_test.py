@@ -33,10 +33,10 @@ def fail(message):
 
 def random_scene(rng):
     """A small scene: 1-3 objects of random shapes and paths, 1-3 lights."""
-    width = rng.randint(16, 64)
+    width = rng.randint(16, 160)  # (up to 160: packets longer than the FIFOs, timed in chunks)
     # (A camera as near as 1.2 clips objects against the near plane and the guard band.)
     scene = {"camera": {"position": [rng.uniform(-1, 1), rng.uniform(-0.5, 1.5), rng.uniform(1.2, 5)],
-                        "target": [0, 0, 0], "resolution": [width, rng.randint(12, 48)],
+                        "target": [0, 0, 0], "resolution": [width, rng.randint(12, 96)],
                         "local_viewer": rng.random() < 0.5},
              "lights": [], "textures": {
                  "relief": {"type": "steps", "size": [32, 32], "cells": rng.randint(2, 6), "levels": rng.randint(2, 5),

@@ -35,6 +35,9 @@ PixelLine::PixelLine(std::vector<Timing> blocks, DramTiming dram) {
     blocks_.push_back(s);
   }
   ring_size_ = ring_above(reach);
+  uint64_t chunk = kSpanMax;  // K: at most every span block's FIFO depth
+  for (size_t j = 1; j < blocks.size(); ++j) chunk = std::min<uint64_t>(chunk, blocks[j].fifo_depth);
+  chunk_ = int(std::max<uint64_t>(chunk, 1));
   ring_mask_ = ring_size_ - 1;
   // −1: a pixel before the first, handed on and started "before cycle 0".
   ring_.assign((blocks_.size() * 2 + 1) * ring_size_, -1);
@@ -98,8 +101,9 @@ void PixelLine::walk_hidden(uint64_t steps, const std::vector<StepLines>& misses
   r.free += int64_t(cycles);
 }
 
-// The pixels of the packet, pixel by pixel, block by block (timing.hpp's recurrence).
-template <bool kInspect, bool kMemory>
+// Under the memory model: the pixels of the packet, pixel by pixel, block by block
+// (timing.hpp's recurrence), so that the DRAM sees the requests in their order.
+template <bool kInspect>
 void PixelLine::sweep_pixels(int count) {
   const size_t blocks = blocks_.size();
   for (int i = 0; i < count; ++i, ++n_) {
@@ -109,18 +113,16 @@ void PixelLine::sweep_pixels(int count) {
     int64_t s = std::max(r.free, r.d[(n_ - uint64_t(r.capacity)) & ring_mask_] + 1);
     int64_t done = s + r.latency;
     int64_t depth_back = -1;
-    if constexpr (kMemory) {
-      if (const uint32_t lines = r.work.lines_at(i); lines > 0) {  // its depth read missed
-        depth_back = depth_read(s, lines);
-        done = std::max(s, depth_back) + r.latency;
-      }
-      dram_->forget_before(s);  // every later request is made after s
+    if (const uint32_t lines = r.work.lines_at(i); lines > 0) {  // its depth read missed
+      depth_back = depth_read(s, lines);
+      done = std::max(s, depth_back) + r.latency;
     }
+    dram_->forget_before(s);  // every later request is made after s
     r.t.blocked += uint64_t(s - r.free);
     if constexpr (kInspect) r.t.add_busy(s, uint64_t(r.ii));
     else r.t.busy += uint64_t(r.ii);
     r.free = s + r.ii;
-    if (kMemory && r.timing.miss_queue == 0 && depth_back + 1 > r.free) {  // the walk waits for the data
+    if (r.timing.miss_queue == 0 && depth_back + 1 > r.free) {  // the walk waits for the data
       r.t.blocked += uint64_t(depth_back + 1 - r.free);
       r.free = depth_back + 1;
     }
@@ -144,13 +146,11 @@ void PixelLine::sweep_pixels(int count) {
       else b.t.busy += uint64_t(o);
       b.free = s + o;
       int64_t f = b.free + (w > 0 ? b.latency - b.ii : 0);
-      if constexpr (kMemory) {
-        if (const uint32_t lines = b.work.lines_at(i); lines > 0) {  // its data from the DRAM
-          const int64_t back = dram_->request(s, uint64_t(lines) * b.line_bytes);
-          b.t.memory_stall += uint64_t(std::max<int64_t>(back + b.latency - f, 0));
-          b.t.dram_lines += lines;
-          f = std::max(f, back + b.latency);
-        }
+      if (const uint32_t lines = b.work.lines_at(i); lines > 0) {  // its data from the DRAM
+        const int64_t back = dram_->request(s, uint64_t(lines) * b.line_bytes);
+        b.t.memory_stall += uint64_t(std::max<int64_t>(back + b.latency - f, 0));
+        b.t.dram_lines += lines;
+        f = std::max(f, back + b.latency);
       }
       const int64_t valid = std::max(f, b.t.last + 1);
       d = std::max(valid, b.next_s[(n_ - uint64_t(b.next_depth)) & ring_mask_] + 1);
@@ -158,6 +158,90 @@ void PixelLine::sweep_pixels(int count) {
       b.s[slot] = s, b.d[slot] = d, b.t.last = d;
     }
   }
+}
+
+// The raster's pixels [first, last) (its part of sweep_pixels, without memory).
+template <bool kInspect>
+void PixelLine::raster_chunk(int first, int last) {
+  Slot& r = blocks_[0];
+  const uint64_t mask = ring_mask_, capacity = uint64_t(r.capacity), next_depth = uint64_t(r.next_depth);
+  int64_t* const s_ring = r.s;
+  int64_t* const d_ring = r.d;
+  const int64_t* const next_s = r.next_s;
+  const int64_t ii = r.ii, latency = r.latency;
+  int64_t free = r.free, last_d = r.t.last;
+  uint64_t blocked = 0;
+  const uint64_t n0 = n_;  // (a local: the rings' stores could alias a member)
+  for (int i = first; i < last; ++i) {
+    const uint64_t n = n0 + uint64_t(i);
+    // The walk has reached the pixel (a step of its own) and a register is free.
+    const int64_t s = std::max(free, d_ring[(n - capacity) & mask] + 1);
+    blocked += uint64_t(s - free);
+    if constexpr (kInspect) r.t.add_busy(s, uint64_t(ii));
+    free = s + ii;
+    const int64_t valid = std::max(s + latency, last_d + 1);
+    const int64_t d = std::max(valid, next_s[(n - next_depth) & mask] + 1);
+    if constexpr (kInspect) times_[0][size_t(i)] = {s, d, valid, 0};
+    s_ring[n & mask] = s, d_ring[n & mask] = d, last_d = d;
+  }
+  if constexpr (!kInspect) r.t.busy += uint64_t(ii) * uint64_t(last - first);
+  r.t.blocked += blocked;
+  r.free = free, r.t.last = last_d;
+}
+
+// Span block j's pixels [first, last) (its part of sweep_pixels, without memory).
+// kUniform: every pixel the same work (Work::each), its occupancy and latency known
+// before the loop. Once the FIFO's peak is its depth it can grow no more, and the
+// oldest pixel waiting (`head`) is no longer followed unless its occupancy is kept.
+template <bool kInspect, bool kUniform>
+void PixelLine::span_chunk(size_t j, int first, int last) {
+  Slot& b = blocks_[j];
+  const uint64_t mask = ring_mask_, capacity = uint64_t(b.capacity), next_depth = uint64_t(b.next_depth);
+  const int64_t* const before = blocks_[j - 1].d;  // the block before's hand-overs
+  int64_t* const s_ring = b.s;
+  int64_t* const d_ring = b.d;
+  const int64_t* const next_s = b.next_s;
+  const uint16_t* const work = b.w;
+  const int64_t ii = b.ii, tail = b.latency - b.ii;  // done at the end of its work + L − II
+  const uint64_t depth = b.timing.fifo_depth;
+  // kUniform: the occupancy of the unit and the cycles from its end to done.
+  const int64_t each_o = std::max<int64_t>(ii * int64_t(b.work.each), 1), each_tail = b.work.each > 0 ? tail : 0;
+  int64_t free = b.free, last_d = b.t.last, head = b.head;
+  uint64_t busy = 0, blocked = 0, fifo_cycles = 0, fifo_peak = b.t.fifo_peak;
+  const uint64_t n0 = n_;
+  for (int i = first; i < last; ++i) {
+    const uint64_t n = n0 + uint64_t(i);
+    const int64_t handed = before[n & mask];
+    const int64_t arrived = handed + 1;  // in its FIFO since the cycle before
+    const int64_t room = d_ring[(n - capacity) & mask] + 1;  // a register free
+    const int64_t s = std::max(arrived, std::max(free, room));
+    blocked += uint64_t(std::max<int64_t>(room - free, 0));  // every register full
+    fifo_cycles += uint64_t(s - handed);
+    // The pixels in its FIFO once this one came in: from the oldest not yet started.
+    if (kInspect || fifo_peak < depth) {
+      while (head < int64_t(n) && s_ring[uint64_t(head) & mask] < arrived) ++head;
+      fifo_peak = std::max(fifo_peak, n + 1 - uint64_t(head));
+    }
+    int64_t o = each_o, done_after = each_tail;
+    if constexpr (!kUniform) {
+      const uint32_t w = work[i];
+      o = std::max<int64_t>(ii * int64_t(w), 1);  // 1: bypassed
+      done_after = w > 0 ? tail : 0;
+      busy += uint64_t(o);
+    }
+    if constexpr (kInspect) b.t.add_busy(s, uint64_t(o));
+    free = s + o;
+    const int64_t valid = std::max(free + done_after, last_d + 1);
+    const int64_t d = std::max(valid, next_s[(n - next_depth) & mask] + 1);
+    if constexpr (kInspect) times_[j][size_t(i)] = {s, d, valid, n + 1 - uint64_t(head)};
+    s_ring[n & mask] = s, d_ring[n & mask] = d, last_d = d;
+  }
+  if constexpr (kUniform) busy = uint64_t(each_o) * uint64_t(last - first);
+  if constexpr (!kInspect) b.t.busy += busy;
+  b.t.blocked += blocked, b.t.fifo_cycles += fifo_cycles, b.t.fifo_peak = fifo_peak;
+  b.free = free, b.t.last = last_d;
+  // (Behind the FIFO's pixels when no longer followed: the next that follows it catches up.)
+  b.head = std::max(head, int64_t(n0 + uint64_t(last)) - int64_t(depth));
 }
 
 void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before, const std::vector<StepLines>& misses) {
@@ -181,11 +265,22 @@ void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before, const std::ve
   bool inspect = keep_times && (watched || log_);
   for (const Slot& b : blocks_) inspect = inspect || b.t.bin_cycles > 0;
   if (dram_) {
-    if (inspect) sweep_pixels<true, true>(count);
-    else sweep_pixels<false, true>(count);
+    if (inspect) sweep_pixels<true>(count);
+    else sweep_pixels<false>(count);
   } else {
-    if (inspect) sweep_pixels<true, false>(count);
-    else sweep_pixels<false, false>(count);
+    for (int first = 0; first < count; first += chunk_) {  // block-major in chunks ("Order of the sweep")
+      const int last = std::min(count, first + chunk_);
+      if (inspect) {
+        raster_chunk<true>(first, last);
+        for (size_t j = 1; j < blocks; ++j) span_chunk<true, false>(j, first, last);
+      } else {
+        raster_chunk<false>(first, last);
+        for (size_t j = 1; j < blocks; ++j)
+          if (blocks_[j].work.per_pixel) span_chunk<false, false>(j, first, last);
+          else span_chunk<false, true>(j, first, last);
+      }
+    }
+    n_ += uint64_t(count);
   }
   if (log_) log_->pixels(p, hidden_before, *this);
   if (watched)

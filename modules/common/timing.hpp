@@ -25,6 +25,13 @@
 // pixel n starts when the walk reaches it and a register is free; hidden pixels cost a
 // step each and need no register (start_triangle, walk_hidden, sweep).
 //
+// Order of the sweep: a term of pixel n at block j reads block j + 1 only at pixel
+// n − b_{j+1}. So in chunks of K ≤ every b_j pixels (K: the shallowest FIFO after the
+// raster), every block can time the whole chunk before the next block does — block-major
+// within the chunk, each block's state in registers — reading only chunks already done
+// (sweep_chunk). Under the memory model the sweep stays pixel-major: the DRAM serves
+// requests oldest pixel first, in the order they are made.
+//
 // Memory (docs/memory.md): a memory client whose pixel moved m > 0 cache lines asks the
 // shared DRAM for them as it starts the pixel; the data is back at r (modules/memory/
 // dram.hpp), and the pixel is done at f_j(n) = max(s_j(n) + II·(w − 1), r) + L. Its
@@ -201,7 +208,10 @@ class PixelLine {
     int64_t s, d, v;
     uint64_t q;
   };
-  template <bool kInspect, bool kMemory> void sweep_pixels(int count);
+  template <bool kInspect> void sweep_pixels(int count);  // (under the memory model)
+  // Ideal memory: pixels [first, last) of the packet at the raster, then at span block j.
+  template <bool kInspect> void raster_chunk(int first, int last);
+  template <bool kInspect, bool kUniform> void span_chunk(size_t j, int first, int last);
   // The raster's depth read at cycle t moves `lines`: t waits for a miss entry; returns
   // the cycle its data is back.
   int64_t depth_read(int64_t& t, uint32_t lines);
@@ -209,6 +219,7 @@ class PixelLine {
   std::vector<Slot> blocks_;
   std::vector<int64_t> ring_;  // per block: the starts, then the hand-overs of the last pixels
   uint64_t ring_size_ = 0, ring_mask_ = 0;
+  int chunk_ = 1;              // pixels timed block-major at a time (K)
   uint64_t n_ = 0;             // pixels swept so far
   int64_t triangle_start_ = -1;  // when the raster took its last triangle
   std::vector<std::vector<Times>> times_;
