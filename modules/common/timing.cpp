@@ -34,25 +34,36 @@ PixelLine::PixelLine(std::vector<Timing> blocks, DramTiming dram) {
     reach = std::max({reach, uint64_t(s.capacity), uint64_t(s.next_depth), blocks[j].fifo_depth});
     blocks_.push_back(s);
   }
-  ring_size_ = ring_above(reach);
   uint64_t chunk = kSpanMax;  // K: at most every span block's FIFO depth
   for (size_t j = 1; j < blocks.size(); ++j) chunk = std::min<uint64_t>(chunk, blocks[j].fifo_depth);
   chunk_ = int(std::max<uint64_t>(chunk, 1));
-  ring_mask_ = ring_size_ - 1;
-  // −1: a pixel before the first, handed on and started "before cycle 0".
-  ring_.assign((blocks_.size() * 2 + 1) * ring_size_, -1);
+  // Windows of a few thousand pixels: sliding them (a copy of `reach` pixels) is rare.
+  reach_ = int64_t(reach);
+  window_ = reach_ + std::max<int64_t>(16 * reach_, 2048) + kSpanMax;
+  base_ = -reach_;  // pixel 0 after `reach` pixels "handed on and started before cycle 0"
+  windows_.assign((blocks_.size() * 2 + 1) * size_t(window_), -1);
   for (size_t j = 0; j < blocks_.size(); ++j) {
     Slot& b = blocks_[j];
-    b.s = &ring_[j * 2 * ring_size_];
-    b.d = b.s + ring_size_;
+    b.s = &windows_[j * 2 * size_t(window_)];
+    b.d = b.s + window_;
     b.ii = int64_t(b.timing.ii), b.latency = int64_t(b.timing.latency);
   }
   for (size_t j = 0; j + 1 < blocks_.size(); ++j) blocks_[j].next_s = blocks_[j + 1].s;
-  // After the last block, a FIFO always with room: a ring of "started before cycle 0".
-  blocks_.back().next_s = &ring_[blocks_.size() * 2 * ring_size_];
+  // After the last block, a FIFO always with room: a window of "started before cycle 0".
+  blocks_.back().next_s = &windows_[blocks_.size() * 2 * size_t(window_)];
   blocks_.back().next_depth = 1;
   times_.assign(blocks_.size(), std::vector<Times>(64));
   depth_back_.assign(ring_above(blocks_[0].timing.miss_queue), -1);
+}
+
+void PixelLine::slide_windows(int count) {
+  if (at(n_) + count <= window_) return;
+  const int64_t shift = at(n_) - reach_;
+  for (size_t w = 0; w < blocks_.size() * 2 + 1; ++w) {
+    int64_t* const window = &windows_[w * size_t(window_)];
+    std::copy(window + shift, window + shift + reach_, window);
+  }
+  base_ += shift;
 }
 
 int64_t PixelLine::depth_read(int64_t& t, uint32_t lines) {
@@ -107,10 +118,10 @@ template <bool kInspect>
 void PixelLine::sweep_pixels(int count) {
   const size_t blocks = blocks_.size();
   for (int i = 0; i < count; ++i, ++n_) {
-    const uint64_t slot = n_ & ring_mask_;
+    const int64_t slot = at(n_);
     // The raster: the walk has reached the pixel (a step of its own) and a register is free.
     Slot& r = blocks_[0];
-    int64_t s = std::max(r.free, r.d[(n_ - uint64_t(r.capacity)) & ring_mask_] + 1);
+    int64_t s = std::max(r.free, r.d[slot - r.capacity] + 1);
     int64_t done = s + r.latency;
     int64_t depth_back = -1;
     if (const uint32_t lines = r.work.lines_at(i); lines > 0) {  // its depth read missed
@@ -126,19 +137,19 @@ void PixelLine::sweep_pixels(int count) {
       r.t.blocked += uint64_t(depth_back + 1 - r.free);
       r.free = depth_back + 1;
     }
-    int64_t d = std::max(std::max(done, r.t.last + 1), r.next_s[(n_ - uint64_t(r.next_depth)) & ring_mask_] + 1);
+    int64_t d = std::max(std::max(done, r.t.last + 1), r.next_s[slot - r.next_depth] + 1);
     if constexpr (kInspect) times_[0][size_t(i)] = {s, d, std::max(done, r.t.last + 1), 0};
     r.s[slot] = s, r.d[slot] = d, r.t.last = d;
     for (size_t j = 1; j < blocks; ++j) {  // the span blocks, timing.hpp's recurrence
       Slot& b = blocks_[j];
       const int64_t arrived = d + 1;  // in its FIFO since the cycle before
-      const int64_t room = b.d[(n_ - uint64_t(b.capacity)) & ring_mask_] + 1;  // a register free
+      const int64_t room = b.d[slot - b.capacity] + 1;  // a register free
       s = std::max(arrived, std::max(b.free, room));
       b.t.blocked += uint64_t(std::max<int64_t>(room - b.free, 0));  // every register full
       // Its FIFO held the pixel from the end of cycle d_{j−1}(n) to s; the peak: the pixels
       // in it once this one came in.
       b.t.fifo_cycles += uint64_t(s - d);
-      while (b.head < int64_t(n_) && b.s[uint64_t(b.head) & ring_mask_] < arrived) ++b.head;
+      while (b.head < int64_t(n_) && b.s[b.head - base_] < arrived) ++b.head;
       b.t.fifo_peak = std::max(b.t.fifo_peak, n_ + 1 - uint64_t(b.head));
       const uint32_t w = b.w[i];
       const int64_t o = std::max<int64_t>(b.ii * int64_t(w), 1);  // 1: bypassed
@@ -153,7 +164,7 @@ void PixelLine::sweep_pixels(int count) {
         f = std::max(f, back + b.latency);
       }
       const int64_t valid = std::max(f, b.t.last + 1);
-      d = std::max(valid, b.next_s[(n_ - uint64_t(b.next_depth)) & ring_mask_] + 1);
+      d = std::max(valid, b.next_s[slot - b.next_depth] + 1);
       if constexpr (kInspect) times_[j][size_t(i)] = {s, d, valid, n_ + 1 - uint64_t(b.head)};
       b.s[slot] = s, b.d[slot] = d, b.t.last = d;
     }
@@ -164,25 +175,24 @@ void PixelLine::sweep_pixels(int count) {
 template <bool kInspect>
 void PixelLine::raster_chunk(int first, int last) {
   Slot& r = blocks_[0];
-  const uint64_t mask = ring_mask_, capacity = uint64_t(r.capacity), next_depth = uint64_t(r.next_depth);
-  int64_t* const s_ring = r.s;
-  int64_t* const d_ring = r.d;
-  const int64_t* const next_s = r.next_s;
+  // The windows from the packet's first pixel: index i is its pixel i.
+  int64_t* const starts = r.s + at(n_);
+  int64_t* const handed = r.d + at(n_);
+  const int64_t* const register_freed = handed - r.capacity;        // d(n − C)
+  const int64_t* const next_started = r.next_s + at(n_) - r.next_depth;  // s_{j+1}(n − b)
   const int64_t ii = r.ii, latency = r.latency;
   int64_t free = r.free, last_d = r.t.last;
   uint64_t blocked = 0;
-  const uint64_t n0 = n_;  // (a local: the rings' stores could alias a member)
   for (int i = first; i < last; ++i) {
-    const uint64_t n = n0 + uint64_t(i);
     // The walk has reached the pixel (a step of its own) and a register is free.
-    const int64_t s = std::max(free, d_ring[(n - capacity) & mask] + 1);
+    const int64_t s = std::max(free, register_freed[i] + 1);
     blocked += uint64_t(s - free);
     if constexpr (kInspect) r.t.add_busy(s, uint64_t(ii));
     free = s + ii;
     const int64_t valid = std::max(s + latency, last_d + 1);
-    const int64_t d = std::max(valid, next_s[(n - next_depth) & mask] + 1);
+    const int64_t d = std::max(valid, next_started[i] + 1);
     if constexpr (kInspect) times_[0][size_t(i)] = {s, d, valid, 0};
-    s_ring[n & mask] = s, d_ring[n & mask] = d, last_d = d;
+    starts[i] = s, handed[i] = d, last_d = d;
   }
   if constexpr (!kInspect) r.t.busy += uint64_t(ii) * uint64_t(last - first);
   r.t.blocked += blocked;
@@ -196,31 +206,31 @@ void PixelLine::raster_chunk(int first, int last) {
 template <bool kInspect, bool kUniform>
 void PixelLine::span_chunk(size_t j, int first, int last) {
   Slot& b = blocks_[j];
-  const uint64_t mask = ring_mask_, capacity = uint64_t(b.capacity), next_depth = uint64_t(b.next_depth);
-  const int64_t* const before = blocks_[j - 1].d;  // the block before's hand-overs
-  int64_t* const s_ring = b.s;
-  int64_t* const d_ring = b.d;
-  const int64_t* const next_s = b.next_s;
+  // The windows from the packet's first pixel: index i is its pixel i.
+  const int64_t* const before = blocks_[j - 1].d + at(n_);  // the block before's hand-overs
+  int64_t* const starts = b.s + at(n_);
+  int64_t* const handed = b.d + at(n_);
+  const int64_t* const register_freed = handed - b.capacity;        // d(n − C)
+  const int64_t* const next_started = b.next_s + at(n_) - b.next_depth;  // s_{j+1}(n − b)
   const uint16_t* const work = b.w;
   const int64_t ii = b.ii, tail = b.latency - b.ii;  // done at the end of its work + L − II
-  const uint64_t depth = b.timing.fifo_depth;
+  const int64_t depth = int64_t(b.timing.fifo_depth);
   // kUniform: the occupancy of the unit and the cycles from its end to done.
   const int64_t each_o = std::max<int64_t>(ii * int64_t(b.work.each), 1), each_tail = b.work.each > 0 ? tail : 0;
-  int64_t free = b.free, last_d = b.t.last, head = b.head;
-  uint64_t busy = 0, blocked = 0, fifo_cycles = 0, fifo_peak = b.t.fifo_peak;
-  const uint64_t n0 = n_;
+  int64_t free = b.free, last_d = b.t.last;
+  int64_t head = b.head - int64_t(n_);  // the oldest pixel in its FIFO, from the packet's first
+  uint64_t busy = 0, blocked = 0, fifo_cycles = 0;
+  int64_t fifo_peak = int64_t(b.t.fifo_peak);
   for (int i = first; i < last; ++i) {
-    const uint64_t n = n0 + uint64_t(i);
-    const int64_t handed = before[n & mask];
-    const int64_t arrived = handed + 1;  // in its FIFO since the cycle before
-    const int64_t room = d_ring[(n - capacity) & mask] + 1;  // a register free
+    const int64_t arrived = before[i] + 1;  // in its FIFO since the cycle before
+    const int64_t room = register_freed[i] + 1;  // a register free
     const int64_t s = std::max(arrived, std::max(free, room));
     blocked += uint64_t(std::max<int64_t>(room - free, 0));  // every register full
-    fifo_cycles += uint64_t(s - handed);
+    fifo_cycles += uint64_t(s - arrived + 1);
     // The pixels in its FIFO once this one came in: from the oldest not yet started.
     if (kInspect || fifo_peak < depth) {
-      while (head < int64_t(n) && s_ring[uint64_t(head) & mask] < arrived) ++head;
-      fifo_peak = std::max(fifo_peak, n + 1 - uint64_t(head));
+      while (head < i && starts[head] < arrived) ++head;
+      fifo_peak = std::max<int64_t>(fifo_peak, i + 1 - head);
     }
     int64_t o = each_o, done_after = each_tail;
     if constexpr (!kUniform) {
@@ -232,21 +242,22 @@ void PixelLine::span_chunk(size_t j, int first, int last) {
     if constexpr (kInspect) b.t.add_busy(s, uint64_t(o));
     free = s + o;
     const int64_t valid = std::max(free + done_after, last_d + 1);
-    const int64_t d = std::max(valid, next_s[(n - next_depth) & mask] + 1);
-    if constexpr (kInspect) times_[j][size_t(i)] = {s, d, valid, n + 1 - uint64_t(head)};
-    s_ring[n & mask] = s, d_ring[n & mask] = d, last_d = d;
+    const int64_t d = std::max(valid, next_started[i] + 1);
+    if constexpr (kInspect) times_[j][size_t(i)] = {s, d, valid, uint64_t(i + 1 - head)};
+    starts[i] = s, handed[i] = d, last_d = d;
   }
   if constexpr (kUniform) busy = uint64_t(each_o) * uint64_t(last - first);
   if constexpr (!kInspect) b.t.busy += busy;
-  b.t.blocked += blocked, b.t.fifo_cycles += fifo_cycles, b.t.fifo_peak = fifo_peak;
+  b.t.blocked += blocked, b.t.fifo_cycles += fifo_cycles, b.t.fifo_peak = uint64_t(fifo_peak);
   b.free = free, b.t.last = last_d;
   // (Behind the FIFO's pixels when no longer followed: the next that follows it catches up.)
-  b.head = std::max(head, int64_t(n0 + uint64_t(last)) - int64_t(depth));
+  b.head = int64_t(n_) + std::max<int64_t>(head, last - depth);
 }
 
 void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before, const std::vector<StepLines>& misses) {
   const int count = p.count;
   walk_hidden(hidden_before, misses);
+  slide_windows(count);
   if (keep_times && times_[0].size() < size_t(count))
     for (auto& t : times_) t.resize(size_t(count));
   const size_t blocks = blocks_.size();

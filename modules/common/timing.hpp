@@ -146,7 +146,7 @@ class PixelLine {
  public:
   // `dram`: the shared DRAM's timing, when a block is a memory client (line_bytes > 0).
   explicit PixelLine(std::vector<Timing> blocks, DramTiming dram = {});
-  PixelLine(const PixelLine&) = delete;  // its blocks point into its rings
+  PixelLine(const PixelLine&) = delete;  // its blocks point into its windows
   PixelLine& operator=(const PixelLine&) = delete;
 
   // Span blocks: the work of the packet now passing (set by each block as it passes).
@@ -197,7 +197,7 @@ class PixelLine {
     int64_t head = 0;        // the oldest pixel still in its FIFO (for the peak)
     int64_t ii = 1, latency = 1;
     uint64_t line_bytes = 0;
-    int64_t *s = nullptr, *d = nullptr;  // the starts and hand-overs of its last pixels (rings)
+    int64_t *s = nullptr, *d = nullptr;  // the starts and hand-overs of its last pixels (windows)
     int64_t* next_s = nullptr;           // the next block's starts (after the last: always room)
     Work work;
     const uint16_t* w = nullptr;         // the packet's work, per pixel
@@ -216,9 +216,14 @@ class PixelLine {
   // the cycle its data is back.
   int64_t depth_read(int64_t& t, uint32_t lines);
 
+  // Per block, the starts and then the hand-overs of its last pixels, in windows: pixel n
+  // at index n − base_, so that a term's look back (n − C, n − b) is a plain index. When
+  // a packet would run past a window's end, the last `reach_` pixels move to its front.
+  void slide_windows(int count);
+  int64_t at(uint64_t n) const { return int64_t(n) - base_; }
   std::vector<Slot> blocks_;
-  std::vector<int64_t> ring_;  // per block: the starts, then the hand-overs of the last pixels
-  uint64_t ring_size_ = 0, ring_mask_ = 0;
+  std::vector<int64_t> windows_;
+  int64_t window_ = 0, reach_ = 0, base_ = 0;
   int chunk_ = 1;              // pixels timed block-major at a time (K)
   uint64_t n_ = 0;             // pixels swept so far
   int64_t triangle_start_ = -1;  // when the raster took its last triangle
