@@ -110,14 +110,16 @@ struct SpanPacket {
 };
 
 // A block's work for each pixel of a packet, in units of its II (a kernel's work()):
-// uniform (`each`) or per pixel. 0: no work (bypassed). A memory client also says how
-// many cache lines each pixel moved to or from the DRAM (`lines`; none: null).
+// uniform (`each`, and `lead` more for the packet's first pixel: a seed, a walk to it) or
+// per pixel. 0: no work (bypassed). A memory client also says how many cache lines each
+// pixel moved to or from the DRAM (`lines`; none: null).
 struct Work {
   const uint16_t* per_pixel = nullptr;
   uint32_t each = 0;
   const uint16_t* lines = nullptr;
+  uint32_t lead = 0;
   uint32_t lines_at(int i) const { return lines ? lines[i] : 0; }
-  uint32_t at(int i) const { return per_pixel ? per_pixel[i] : each; }
+  uint32_t at(int i) const { return per_pixel ? per_pixel[i] : i == 0 ? each + lead : each; }
 };
 
 class FramebufferKernel;

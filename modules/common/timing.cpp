@@ -200,9 +200,10 @@ void PixelLine::raster_chunk(int first, int last) {
 }
 
 // Span block j's pixels [first, last) (its part of sweep_pixels, without memory).
-// kUniform: every pixel the same work (Work::each), its occupancy and latency known
-// before the loop. Once the FIFO's peak is its depth it can grow no more, and the
-// oldest pixel waiting (`head`) is no longer followed unless its occupancy is kept.
+// kUniform: every pixel the same work (Work::each; the packet's first pixel its lead
+// more), its occupancy and latency known before the loop. Once the FIFO's peak is its
+// depth it can grow no more, and the oldest pixel waiting (`head`) is no longer followed
+// unless its occupancy is kept.
 template <bool kInspect, bool kUniform>
 void PixelLine::span_chunk(size_t j, int first, int last) {
   Slot& b = blocks_[j];
@@ -212,42 +213,50 @@ void PixelLine::span_chunk(size_t j, int first, int last) {
   int64_t* const handed = b.d + at(n_);
   const int64_t* const register_freed = handed - b.capacity;        // d(n − C)
   const int64_t* const next_started = b.next_s + at(n_) - b.next_depth;  // s_{j+1}(n − b)
-  const uint16_t* const work = b.w;
   const int64_t ii = b.ii, tail = b.latency - b.ii;  // done at the end of its work + L − II
   const int64_t depth = int64_t(b.timing.fifo_depth);
-  // kUniform: the occupancy of the unit and the cycles from its end to done.
-  const int64_t each_o = std::max<int64_t>(ii * int64_t(b.work.each), 1), each_tail = b.work.each > 0 ? tail : 0;
   int64_t free = b.free, last_d = b.t.last;
   int64_t head = b.head - int64_t(n_);  // the oldest pixel in its FIFO, from the packet's first
   uint64_t busy = 0, blocked = 0, fifo_cycles = 0;
   int64_t fifo_peak = int64_t(b.t.fifo_peak);
-  for (int i = first; i < last; ++i) {
+  int64_t last_s = starts[first - 1];  // the start of the pixel before
+  // Pixel i with work w: its occupancy of the unit, max(II · w, 1) (1: bypassed), and the
+  // cycles from the end of that to done.
+  auto pixel = [&](int i, uint32_t w) {
+    const int64_t o = std::max<int64_t>(ii * int64_t(w), 1), done_after = w > 0 ? tail : 0;
     const int64_t arrived = before[i] + 1;  // in its FIFO since the cycle before
-    const int64_t room = register_freed[i] + 1;  // a register free
-    const int64_t s = std::max(arrived, std::max(free, room));
-    blocked += uint64_t(std::max<int64_t>(room - free, 0));  // every register full
+    const int64_t ready = std::max(free, register_freed[i] + 1);  // the unit and a register free
+    const int64_t s = std::max(arrived, ready);
+    blocked += uint64_t(ready - free);  // every register full
     fifo_cycles += uint64_t(s - arrived + 1);
-    // The pixels in its FIFO once this one came in: from the oldest not yet started.
-    if (kInspect || fifo_peak < depth) {
+    // The pixels in its FIFO once this one came in: from the oldest not yet started (when
+    // the pixel before it had started, it alone).
+    if (kInspect || (fifo_peak < depth && last_s >= arrived)) {
       while (head < i && starts[head] < arrived) ++head;
       fifo_peak = std::max<int64_t>(fifo_peak, i + 1 - head);
     }
-    int64_t o = each_o, done_after = each_tail;
-    if constexpr (!kUniform) {
-      const uint32_t w = work[i];
-      o = std::max<int64_t>(ii * int64_t(w), 1);  // 1: bypassed
-      done_after = w > 0 ? tail : 0;
-      busy += uint64_t(o);
-    }
+    last_s = s;
+    if constexpr (!kUniform) busy += uint64_t(o);
     if constexpr (kInspect) b.t.add_busy(s, uint64_t(o));
     free = s + o;
     const int64_t valid = std::max(free + done_after, last_d + 1);
     const int64_t d = std::max(valid, next_started[i] + 1);
     if constexpr (kInspect) times_[j][size_t(i)] = {s, d, valid, uint64_t(i + 1 - head)};
     starts[i] = s, handed[i] = d, last_d = d;
+  };
+  if constexpr (kUniform) {
+    const uint32_t each = b.work.each;
+    int i = first;
+    if (first == 0 && last > 0) pixel(i++, each + b.work.lead);
+    for (; i < last; ++i) pixel(i, each);
+    busy = uint64_t(std::max<int64_t>(ii * int64_t(each), 1)) * uint64_t(last - first);
+    if (first == 0 && last > 0)
+      busy += uint64_t(std::max<int64_t>(ii * int64_t(each + b.work.lead), 1) - std::max<int64_t>(ii * int64_t(each), 1));
+  } else {
+    for (int i = first; i < last; ++i) pixel(i, b.w[i]);
   }
-  if constexpr (kUniform) busy = uint64_t(each_o) * uint64_t(last - first);
   if constexpr (!kInspect) b.t.busy += busy;
+  if (last > first) fifo_peak = std::max<int64_t>(fifo_peak, 1);  // (a pixel that came to a started FIFO)
   b.t.blocked += blocked, b.t.fifo_cycles += fifo_cycles, b.t.fifo_peak = uint64_t(fifo_peak);
   b.free = free, b.t.last = last_d;
   // (Behind the FIFO's pixels when no longer followed: the next that follows it catches up.)
@@ -266,7 +275,8 @@ void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before, const std::ve
     if (b.work.per_pixel) {
       b.w = b.work.per_pixel;
     } else {
-      if (b.uniform[0] != b.work.each) std::fill(std::begin(b.uniform), std::end(b.uniform), uint16_t(b.work.each));
+      if (b.uniform[1] != b.work.each) std::fill(std::begin(b.uniform), std::end(b.uniform), uint16_t(b.work.each));
+      b.uniform[0] = uint16_t(b.work.each + b.work.lead);
       b.w = b.uniform;
     }
   }

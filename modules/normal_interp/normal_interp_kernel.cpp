@@ -78,9 +78,11 @@ void NormalInterpKernel::walk(SpanPacket& p) {
   }
   if (tile_start(x_)) seed(n, x_, row_y_);
   // Each pixel's steps: its own, and the first pixel's walk to it.
-  std::fill(work_, work_ + p.count, uint16_t(1));
-  if (p.count > 0) work_[0] = uint16_t(std::min<uint64_t>(steps_ - steps_before + 1, 65535));
+  lead_ = uint32_t(std::min<uint64_t>(steps_ - steps_before + 1, 65535)) - 1;
+  tiled_ = tile > 0;
   if (tile > 0) {  // the tiled walk; the plain one below stays a straight loop
+    std::fill(work_, work_ + p.count, uint16_t(1));
+    if (p.count > 0) work_[0] = uint16_t(1 + lead_);
     for (int i = 0; i < p.count; ++i) {
       if (i > 0 && tile_start(x_ + i)) seed(n, x_ + i, row_y_), ++work_[i];
       for (int c = 0; c < 3; ++c) p.n[c][i] = float(n[c]), n[c] += dh[c];

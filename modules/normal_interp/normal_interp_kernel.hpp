@@ -35,8 +35,9 @@ class NormalInterpKernel {
   void process(SpanPacket& p);
   const Ops& ops() const { return ops_; }
   uint64_t steps() const { return steps_; }  // increments added, all kinds
-  // Work of the last packet: one step per pixel, hidden pixels and row changes included.
-  Work work(const SpanPacket&) const { return {work_, 0}; }  // a step a cycle
+  // Work of the last packet: one step per pixel, hidden pixels and row changes included
+  // (the first pixel's walk to it; per pixel where a tile re-seeds).
+  Work work(const SpanPacket&) const { return tiled_ ? Work{work_, 0} : Work{nullptr, 1, nullptr, lead_}; }
   // Fetched-normal bump paths replace the interpolated normal (the paper's multiplexer
   // would discard it): their packets do not walk.
   bool bypass(const SpanPacket& p) const { return core::fetches_normal(p.tri->material->path); }
@@ -59,7 +60,9 @@ class NormalInterpKernel {
   int x_ = 0;                   // the walker's position along the row
   double n_[3] = {0, 0, 0};     // the normal there
   uint64_t steps_ = 0, last_steps_ = 0;
-  uint16_t work_[kSpanMax];
+  uint32_t lead_ = 0;        // the first pixel's steps before its own
+  bool tiled_ = false;       // the last packet re-seeded per tile: its work is per pixel
+  uint16_t work_[kSpanMax];  // (then)
   Ops ops_;
   NumberContext numbers_;
   bool checks_;  // counts its non-finite outputs (checks_outputs: adders only)

@@ -200,10 +200,7 @@ class NormalizeKernel {
   // The radicand and inverse square root datapaths are of `format`
   // (pipeline.normalize.format).
   explicit NormalizeKernel(NormalizeMode mode, core::NumberFormat format = {}, RadicandSeed seed = RadicandSeed::Packet)
-      : mode_(mode), seed_(seed), numbers_(format) {
-    for (auto& w : seeded_) w = 1;
-    seeded_[0] = 2;
-  }
+      : mode_(mode), seed_(seed), numbers_(format) {}
   void process(SpanPacket& p);
   Ops ops() const;
   NormalizeMode mode() const { return mode_; }
@@ -213,7 +210,7 @@ class NormalizeKernel {
   // A re-seed at pixel k (seed=line's guard) takes them a cycle before pixel k.
   Work work(const SpanPacket&) const {
     if (reseed_at_ >= 0) return Work{reseeded_, 0};
-    return mode_ == NormalizeMode::ForwardDifference && start_ != Start::Carry ? Work{seeded_, 0} : Work{nullptr, 1};
+    return Work{nullptr, 1, nullptr, mode_ == NormalizeMode::ForwardDifference && start_ != Start::Carry ? 1u : 0u};
   }
   bool bypass(const SpanPacket&) const { return false; }
   NumberStats numbers() const { return {numbers_.format.name(), nonfinite_, numbers_.events}; }
@@ -260,7 +257,6 @@ class NormalizeKernel {
   Start start_ = Start::Seed;
   Line line_;
   uint64_t seeds_ = 0, jumps_ = 0, reseeds_ = 0;  // forward-difference packets seeded, jumped, re-seeded
-  uint16_t seeded_[kSpanMax];
   uint16_t reseeded_[kSpanMax];  // the last packet's work when it was re-seeded (reseed_at_ ≥ 0)
   int reseed_at_ = -1;           // the pixel the last packet was re-seeded at, or −1
   PacketTally<2> tally_;  // packets of mode_ (0); forward-difference mode's bump packets, radicand direct (1)

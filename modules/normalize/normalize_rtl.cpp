@@ -135,8 +135,6 @@ NormalizeRtlKernel::NormalizeRtlKernel(NormalizeMode mode, core::NumberFormat fo
                                std::to_string(built.latency) + " and II " + std::to_string(built.ii) +
                                "; the scene's settings give normalize latency " + std::to_string(timing.latency) +
                                " and II " + std::to_string(timing.ii) + " (rtl/CMakeLists.txt builds it)");
-  for (auto& w : seeded_) w = 1;
-  seeded_[0] = 2;
   pins_ = make_pins(mode);
 }
 
@@ -158,7 +156,7 @@ NormalizeRtlKernel::NormalizeRtlKernel(NormalizeMode mode, core::NumberFormat fo
 NormalizeRtlKernel::~NormalizeRtlKernel() = default;
 
 Work NormalizeRtlKernel::work(const SpanPacket&) const {
-  return mode_ == NormalizeMode::ForwardDifference ? Work{seeded_, 0} : Work{nullptr, 1};
+  return Work{nullptr, 1, nullptr, mode_ == NormalizeMode::ForwardDifference ? 1u : 0u};
 }
 
 Ops NormalizeRtlKernel::ops() const {

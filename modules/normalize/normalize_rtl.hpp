@@ -67,7 +67,6 @@ class NormalizeRtlKernel {
   std::string scene_file_;
   std::unique_ptr<NormalizeRtlPins> pins_;
   NumberContext numbers_;  // the format, for the conversions at the pins
-  uint16_t seeded_[kSpanMax];
   PacketTally<2> tally_;  // as the kernel's: mode_ (0), forward-difference bump packets (1)
   uint64_t cycles_ = 0;   // clocked, over the run
   bool reset_ = false;    // the RTL has been reset
