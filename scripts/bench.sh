@@ -9,7 +9,8 @@
 #     pipeline and for the loop: on a smaller frame of the same scene, and on the
 #     leanest Phong configuration.
 # Usage: scripts/bench.sh [--instructions-only] [SCENE [extra --set arguments ...]]
-#   --instructions-only: part 2 alone (about 10 minutes). The memory model's cost
+#   --instructions-only: part 2 alone, and every block elaborated against the needed ones
+#   (about 12 minutes). The memory model's cost
 #   (docs/performance.md): scripts/bench.sh --instructions-only "$PWD/scenes/bench-1080p.json"
 #   --set pipeline.memory.model=dram (the scene named in full: extra arguments follow a scene).
 set -euo pipefail
@@ -80,13 +81,6 @@ count "golden/texture-screen at 960x720 (EWA)" "$root/golden/texture-screen/scen
 count "golden/texture-object at 960x720 (texel_project)" "$root/golden/texture-object/scene.json" "[960,720]"
 count "golden/parallax-steps at 960x720 (refined map)" "$root/golden/parallax-steps/scene.json" "[960,720]"
 
-((only_instructions)) && exit 0
-echo
-echo "== each block's share of the run time (callgrind, self costs by block, SystemC, benchmark scene at 480x270) =="
-valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.share" --toggle-collect="${render_fn[systemc]}" \
-  "$bin" render "$scene" -o "$tmp/f.exr" --set 'camera.resolution=[480,270]' >/dev/null 2>&1
-callgrind_annotate --threshold=100 "$tmp/cg.share" 2>/dev/null | python3 "$root/scripts/block-share.py"
-
 echo
 echo "== every block elaborated / only the ones the scene needs (golden/sphere at 960x720, instructions) =="
 for what in all needed; do
@@ -96,7 +90,14 @@ for what in all needed; do
 done
 all=$(sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$tmp/cg.all")
 needed=$(sed -n 's/^summary: *\([0-9]*\).*/\1/p' "$tmp/cg.needed")
-awk -v a="$all" -v b="$needed" 'BEGIN { printf "  %d / %d = %.4f (goal <= 1.05)\n", a, b, a / b }'
+awk -v a="$all" -v b="$needed" 'BEGIN { printf "  %d / %d = %.4f (goal <= 1.10)\n", a, b, a / b }'
+
+((only_instructions)) && exit 0
+echo
+echo "== each block's share of the run time (callgrind, self costs by block, SystemC, benchmark scene at 480x270) =="
+valgrind --tool=callgrind --callgrind-out-file="$tmp/cg.share" --toggle-collect="${render_fn[systemc]}" \
+  "$bin" render "$scene" -o "$tmp/f.exr" --set 'camera.resolution=[480,270]' >/dev/null 2>&1
+callgrind_annotate --threshold=100 "$tmp/cg.share" 2>/dev/null | python3 "$root/scripts/block-share.py"
 
 echo
 echo "== the cost of tracing =="

@@ -46,42 +46,55 @@ TEST_CASE("PixelLine: four pixels through a raster and two blocks, worked by han
 // The sweep has two forms (timing.hpp, "Order of the sweep"): inspected (every time
 // kept, as the timing log and the clocked reference see them) and not (a block's uniform
 // work folded, its FIFO's oldest pixel no longer followed once the peak is the depth).
-// Both must count the same on any configuration: random ones here, with seeds printed.
+// Both must count the same on any configuration: random ones here, with seeds printed;
+// and a uniform block's work (Work::lead included) the same as that work spelled per pixel.
 TEST_CASE("PixelLine: the inspected sweep and the plain one count the same", "[timing]") {
   for (uint32_t seed = 1; seed <= 300; ++seed) {
     std::mt19937 rng(seed);
     auto pick = [&](int lo, int hi) { return int(std::uniform_int_distribution<int>(lo, hi)(rng)); };
     std::vector<modules::Timing> blocks(size_t(pick(2, 6)));
     for (auto& t : blocks) t = {uint64_t(pick(1, 40)), uint64_t(pick(1, 6)), uint64_t(pick(1, 16))};
-    modules::PixelLine inspected(blocks), plain(blocks);
+    // spelled: the same work, a uniform block's given per pixel (its lead on the first)
+    modules::PixelLine inspected(blocks), plain(blocks), spelled(blocks);
     inspected.keep_times = true;
     std::vector<std::vector<uint16_t>> work(blocks.size(), std::vector<uint16_t>(modules::kSpanMax));
+    std::vector<std::vector<uint16_t>> spelled_work = work;
     int64_t arrival = 0;
     for (int packet = 0; packet < 60; ++packet) {
       if (pick(0, 3) == 0) {  // a new triangle, after some hidden steps
         const int64_t taken = inspected.start_triangle(arrival);
         REQUIRE(plain.start_triangle(arrival) == taken);
+        REQUIRE(spelled.start_triangle(arrival) == taken);
         arrival = taken + pick(0, 30);
       }
       modules::SpanPacket p{};
       p.count = pick(1, modules::kSpanMax);
       for (size_t j = 1; j < blocks.size(); ++j) {
-        modules::Work w{nullptr, uint32_t(pick(0, 3))};  // uniform (0: bypassed) or per pixel
+        // uniform (0: bypassed), with a lead on the first pixel or not, or per pixel
+        modules::Work w{nullptr, uint32_t(pick(0, 3)), nullptr, uint32_t(pick(0, 1) ? pick(1, 5) : 0)};
         if (pick(0, 1)) {
           for (int i = 0; i < p.count; ++i) work[j][size_t(i)] = uint16_t(pick(0, 4));
           w = {work[j].data(), 0};
         }
+        for (int i = 0; i < p.count; ++i) spelled_work[j][size_t(i)] = uint16_t(w.at(i));
         inspected.set_work(int(j), w), plain.set_work(int(j), w);
+        spelled.set_work(int(j), {spelled_work[j].data(), 0});
       }
       const uint64_t hidden = uint64_t(pick(0, 5));
-      inspected.sweep(p, hidden), plain.sweep(p, hidden);
+      inspected.sweep(p, hidden), plain.sweep(p, hidden), spelled.sweep(p, hidden);
     }
-    inspected.settle(), plain.settle();
+    inspected.settle(), plain.settle(), spelled.settle();
     INFO("seed " << seed);
     CHECK(inspected.end() == plain.end());
+    CHECK(spelled.end() == plain.end());
     for (size_t j = 0; j < blocks.size(); ++j) {
-      const modules::BlockTimes &a = inspected.times(int(j)), &b = plain.times(int(j));
+      const modules::BlockTimes &a = inspected.times(int(j)), &b = plain.times(int(j)), &c = spelled.times(int(j));
       INFO("block " << j);
+      CHECK(c.busy == b.busy);
+      CHECK(c.blocked == b.blocked);
+      CHECK(c.fifo_cycles == b.fifo_cycles);
+      CHECK(c.fifo_peak == b.fifo_peak);
+      CHECK(c.last == b.last);
       CHECK(a.busy == b.busy);
       CHECK(a.starved == b.starved);
       CHECK(a.blocked == b.blocked);
