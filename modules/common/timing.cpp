@@ -219,7 +219,15 @@ void PixelLine::span_chunk(size_t j, int first, int last) {
   int64_t head = b.head - int64_t(n_);  // the oldest pixel in its FIFO, from the packet's first
   uint64_t busy = 0, blocked = 0, fifo_cycles = 0;
   int64_t fifo_peak = int64_t(b.t.fifo_peak);
-  int64_t last_s = starts[first - 1];  // the start of the pixel before
+  // The pixels in its FIFO once pixel i came in: from the oldest not yet started (when the
+  // pixel before it had started, it alone). Inspected, as each pixel is timed; else after
+  // the chunk (fewer values live in its loop), and only until the peak is the depth.
+  auto follow_head = [&](int i) {
+    const int64_t arrived = before[i] + 1;
+    if (!kInspect && starts[i - 1] < arrived) return;
+    while (head < i && starts[head] < arrived) ++head;
+    fifo_peak = std::max<int64_t>(fifo_peak, i + 1 - head);
+  };
   // Pixel i with work w: its occupancy of the unit, max(II · w, 1) (1: bypassed), and the
   // cycles from the end of that to done.
   auto pixel = [&](int i, uint32_t w) {
@@ -229,13 +237,7 @@ void PixelLine::span_chunk(size_t j, int first, int last) {
     const int64_t s = std::max(arrived, ready);
     blocked += uint64_t(ready - free);  // every register full
     fifo_cycles += uint64_t(s - arrived + 1);
-    // The pixels in its FIFO once this one came in: from the oldest not yet started (when
-    // the pixel before it had started, it alone).
-    if (kInspect || (fifo_peak < depth && last_s >= arrived)) {
-      while (head < i && starts[head] < arrived) ++head;
-      fifo_peak = std::max<int64_t>(fifo_peak, i + 1 - head);
-    }
-    last_s = s;
+    if constexpr (kInspect) follow_head(i);
     if constexpr (!kUniform) busy += uint64_t(o);
     if constexpr (kInspect) b.t.add_busy(s, uint64_t(o));
     free = s + o;
@@ -255,7 +257,10 @@ void PixelLine::span_chunk(size_t j, int first, int last) {
   } else {
     for (int i = first; i < last; ++i) pixel(i, b.w[i]);
   }
-  if constexpr (!kInspect) b.t.busy += busy;
+  if constexpr (!kInspect) {
+    b.t.busy += busy;
+    for (int i = first; i < last && fifo_peak < depth; ++i) follow_head(i);
+  }
   if (last > first) fifo_peak = std::max<int64_t>(fifo_peak, 1);  // (a pixel that came to a started FIFO)
   b.t.blocked += blocked, b.t.fifo_cycles += fifo_cycles, b.t.fifo_peak = uint64_t(fifo_peak);
   b.free = free, b.t.last = last_d;
