@@ -96,8 +96,6 @@ constexpr int kExitNonfinite = 3;
 void set_threads(const std::string& text);
 void set_compression(const std::string& name);
 int threads();
-// The nearest of `names` to `word`, if near enough to be a typo ("" if none).
-std::string nearest(const std::string& word, const std::vector<std::string>& names);
 
 // An output the command always writes: an empty path is refused.
 void require_output(const std::string& option, const std::string& path);

@@ -15,6 +15,7 @@
 
 #include "app/commands.hpp"
 #include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/nearest.hpp"
 #include "shadetlm/core/version.hpp"
 #include "shadetlm/modules/pipeline/pipeline.hpp"
 
@@ -232,7 +233,7 @@ void set_compression(const std::string& name) {
   try {
     core::set_exr_compression(name);
   } catch (const core::InputError& e) {
-    const std::string near = nearest(name, core::exr_compression_names());
+    const std::string near = core::nearest_name(name, core::exr_compression_names());
     if (near.empty()) throw;
     throw core::InputError("--compression", name, "unknown: did you mean '" + near + "'? (none, rle, zips, zip, piz)");
   }

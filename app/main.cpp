@@ -34,8 +34,16 @@ int main(int argc, char** argv) {
   sc_core::sc_report_handler::set_handler(report_to_stderr);
   CLI::App app{"shadetlm: a SystemC/TLM-2.0 model of a per-pixel shading pipeline"};
   // The version, and what RTL this build has (docs/rtl.md).
-  app.set_version_flag("--version", [] { return std::string(core::kVersion) + "\nrtl: " + modules::normalize_rtl_build(); });
+  app.set_version_flag("-V,--version", [] { return std::string(core::kVersion) + "\nrtl: " + modules::normalize_rtl_build(); });
   app.require_subcommand(1);
+  app.footer(
+      "Examples:\n"
+      "  shadetlm render -o demo.exr                           the built-in demo\n"
+      "  shadetlm render scenes/bench-1080p.json -o f.exr --stats stats.json\n"
+      "  shadetlm render golden/sphere/scene.json -o f.exr --set pipeline.normalize.mode=exact\n"
+      "  shadetlm compare a.exr b.exr                          exit 0 if they match, as idiff\n"
+      "  shadetlm render --help                                a command's own options\n"
+      "Docs: README.md (start there), docs/cli.md, docs/configuration.md\n");
   std::string max_memory;
   app.add_option("--max-memory", max_memory,
                  "memory a run may take, e.g. 8G or 512M (default: half the machine's); given before or after the "
@@ -64,7 +72,15 @@ int main(int argc, char** argv) {
         std::cerr << "shadetlm: " << hint << "\n";
         return 2;
       }
-    return app.exit(e) == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // Said by the command it is about, like every other message (not CLI11's bare line).
+    std::string where = "shadetlm";
+    for (const CLI::App* sub = &app; !sub->get_subcommands().empty();) {
+      sub = sub->get_subcommands().front();
+      where += " " + sub->get_name();
+    }
+    std::cerr << where << ": " << e.what() << " (" << where << " --help shows its arguments)\n";
+    return 2;
   }
   try {
     if (!max_memory.empty()) core::MemoryBudget::process().set_limit(core::parse_bytes(max_memory, "--max-memory"));

@@ -6,34 +6,9 @@
 
 #include "app/commands.hpp"
 #include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/nearest.hpp"
 
 namespace shadetlm::app {
-
-namespace {
-
-// Edit distance (insertions, deletions, substitutions; a swap of neighbours counts 1).
-size_t distance(const std::string& a, const std::string& b) {
-  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
-  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (size_t i = 1; i <= a.size(); ++i)
-    for (size_t j = 1; j <= b.size(); ++j) {
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-    }
-  return d[a.size()][b.size()];
-}
-
-}  // namespace
-
-std::string nearest(const std::string& word, const std::vector<std::string>& names) {
-  std::string best;
-  if (word.size() <= 2) return best;  // (-x: every short option is one letter away)
-  size_t best_distance = std::max<size_t>(2, word.size() / 3) + 1;
-  for (const auto& n : names)
-    if (const size_t d = distance(word, n); d < best_distance) best = n, best_distance = d;
-  return best;
-}
 
 namespace {
 
@@ -62,7 +37,7 @@ std::string suggestion(const CLI::App& top, int argc, char** argv) {
       const std::string name = token.substr(0, token.find('='));
       std::vector<std::string> known = option_names(app);
       if (std::find(known.begin(), known.end(), name) == known.end()) {
-        const std::string near = nearest(name, known);
+        const std::string near = core::nearest_name(name, known);
         return near.empty() ? "" : "unknown option " + core::printable(name, 60) + " of `" + app->get_name() + "`: did you mean " + near + "?";
       }
       const CLI::Option* o = app->get_option_no_throw(name);
@@ -81,7 +56,7 @@ std::string suggestion(const CLI::App& top, int argc, char** argv) {
       app = chosen;
       continue;
     }
-    const std::string near = nearest(token, subcommands);
+    const std::string near = core::nearest_name(token, subcommands);
     if (!near.empty()) return "unknown command '" + shown + "': did you mean '" + near + "'?";
     std::string all;
     for (const auto& n : subcommands) all += (all.empty() ? "" : ", ") + n;

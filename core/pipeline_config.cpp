@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "shadetlm/core/input_error.hpp"
+#include "shadetlm/core/nearest.hpp"
 #include "shadetlm/core/number_format.hpp"
 
 namespace shadetlm::core {
@@ -53,7 +54,9 @@ void check_value(const SettingSpec& spec, const json& value, const std::string& 
     if (!ok) {
       std::string list;
       for (const auto& ch : spec.choices) list += (list.empty() ? "" : ", ") + ch;
-      throw InputError(file, field, "unknown value \"" + value.get<std::string>() + "\" (one of: " + list + ")");
+      const std::string near = nearest_name(value.get<std::string>(), spec.choices);
+      throw InputError(file, field, "unknown value \"" + value.get<std::string>() + "\"" +
+                                        (near.empty() ? "" : ": did you mean \"" + near + "\"?") + " (one of: " + list + ")");
     }
     if (spec.number_format && !(spec.key != "number_format" && value == "default")) try {
         NumberFormat::parse(value.get<std::string>());
@@ -77,10 +80,13 @@ Settings PipelineConfig::resolve(const std::vector<SettingSpec>& specs) const {
   Settings c;
   for (const auto& [key, value] : given_) {
     const SettingSpec* spec = find_spec(specs, key);
-    if (!spec) {
-      std::string known;
-      for (const auto& s : specs) known += (known.empty() ? "" : ", ") + s.key;
-      throw InputError(file_, "pipeline." + key, "unknown setting (known: " + known + ")");
+    if (!spec) {  // a typo: the nearest key, else where the keys are listed
+      std::vector<std::string> keys;
+      for (const auto& s : specs) keys.push_back(s.key);
+      const std::string near = nearest_name(key, keys);
+      throw InputError(file_, "pipeline." + key,
+                       "unknown setting" + (near.empty() ? std::string() : ": did you mean pipeline." + near + "?") +
+                           " (docs/configuration.md lists every setting of the pipeline)");
     }
     check_value(*spec, value, file_);
     c.values_[key] = value;

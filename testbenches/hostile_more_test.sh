@@ -831,6 +831,16 @@ hostile compare-layer "--layer" S compare a.exr b.exr --layer XYZ --diff out.exr
 hostile precompute-form "--form" S precompute normalmap h16.png -o out.exr --form bogus
 hostile precompute-wrap "--wrap" S precompute normalmap h16.png -o out.exr --wrap mirror
 hostile unknown-option "--no-such-option" render base.json --no-such-option
+# CLI11's refusals said by the command they are about, as every other message
+hostile -s compare-one-frame "shadetlm compare: b is required" S compare a.exr
+hostile -s no-command "shadetlm: A subcommand is required" S
+# -V as --version (exit 0, the same first line)
+ok=0
+S -V >stdout 2>stderr && [[ -n $(head -1 stdout) && $(head -1 stdout) == "$(S --version | head -1)" ]] && ok=1
+((ok)) || echo "FAIL version-short-flag: -V does not print the version"
+verdict $ok
+# A mistyped setting: the nearest key, not a list of every one
+hostile -s setting-typo "did you mean pipeline.normalize.mode?" S render base.json -o out.exr --set pipeline.normalise.mode=exact
 # (CLI11 says a subcommand is required; it does not name the word it did not know)
 hostile precompute-unknown-map "unknown command 'bogusmap'" S precompute bogusmap h16.png -o out.exr
 

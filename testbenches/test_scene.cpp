@@ -143,6 +143,20 @@ TEST_CASE("unknown keys are rejected wherever they are", "[scene][bad]") {
   CHECK(error_of(doc).first == "pipeline.normalise.mode");
 }
 
+TEST_CASE("a mistyped setting or value is answered with the nearest and not a list of all", "[scene][bad]") {
+  auto [field, what] = error_of(minimal(), {"pipeline.normalise.mode=exact"});
+  CHECK(field == "pipeline.normalise.mode");
+  CHECK_THAT(what, Catch::Contains("did you mean pipeline.normalize.mode?"));
+  CHECK(what.size() < 200);  // (it listed every key, 2 KB)
+  std::tie(field, what) = error_of(minimal(), {"pipeline.lighting.fifo_dpeth=4"});
+  CHECK_THAT(what, Catch::Contains("did you mean pipeline.lighting.fifo_depth?"));
+  std::tie(field, what) = error_of(minimal(), {"pipeline.zzzzzzzz=1"});
+  CHECK_THAT(what, !Catch::Contains("did you mean") && Catch::Contains("docs/configuration.md"));
+  std::tie(field, what) = error_of(minimal(), {"pipeline.normalize.mode=exakt"});
+  CHECK(field == "pipeline.normalize.mode");
+  CHECK_THAT(what, Catch::Contains("did you mean \"exact\"?"));
+}
+
 TEST_CASE("unknown values of choice fields are rejected", "[scene][bad]") {
   json doc = minimal();
   doc["materials"]["m"]["path"] = "phong-fast";
