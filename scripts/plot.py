@@ -71,6 +71,7 @@ def load(path):
             r["label"] = label(r)
         except (KeyError, ValueError):
             fail("%s: row %d: %r is not a configuration of the %s family" % (path, k, r["configuration"], r["family"]))
+    check_labels(rows, path)
     return rows
 
 
@@ -91,19 +92,41 @@ SHORT = {"perspective": "P", "affine": "A", "forward-difference": "fwd-diff", "n
 
 
 def label(r):
-    """The run's configuration in a few characters: the values of its axes, abbreviated."""
+    """The run's configuration in a few characters: the values of its family's axes,
+    abbreviated, then any other setting it was given (the number format only when not
+    float32), so that two configurations never share a label."""
     c = {key.rsplit(".", 1)[-1] if "interp" not in key else "interp": v
          for key, v in (kv.split("=", 1) for kv in r["configuration"].split(";"))}
+    used = {"number_format"}
     if r["family"] == "normal":
-        return "%s %s" % (SHORT[c["interp"]], SHORT.get(c["mode"], c["mode"]))
-    if r["family"] == "bump":
-        return "%s %s" % (c["path"].replace("bump-", ""), SHORT.get(c["filter"], c["filter"]))
-    if r["family"] == "texture":  # texture-object has no filter axis
-        return SHORT.get(c.get("filter", c["path"]), c.get("filter", c["path"]))
-    if r["family"] == "parallax":
+        text, used = "%s %s" % (SHORT[c["interp"]], SHORT.get(c["mode"], c["mode"])), used | {"interp", "mode"}
+    elif r["family"] == "bump":
+        text, used = "%s %s" % (c["path"].replace("bump-", ""), SHORT.get(c["filter"], c["filter"])), used | {"path", "filter"}
+    elif r["family"] == "texture":  # texture-object has no filter axis
+        text, used = SHORT.get(c.get("filter", c["path"]), c.get("filter", c["path"])), used | {"filter", "path"}
+    elif r["family"] == "parallax":
         tracer = c["map"] if "map" in c else c.get("method", "refined")
-        return tracer if tracer == "offset" else "%s %s" % (tracer, c.get("max_iterations", c.get("steps")))
-    return ",".join(v for k, v in c.items() if k != "number_format")
+        if "cones" in c:  # classic or relaxed cones: one tracer each
+            tracer = "%s %s" % (c["cones"], tracer)
+        used |= {"map", "method", "cones", "max_iterations", "steps"}
+        text = tracer if tracer == "offset" else "%s %s" % (tracer, c.get("max_iterations", c.get("steps")))
+    else:
+        text = ",".join(v for k, v in c.items() if k != "number_format")
+        used = set(c)
+    extra = ["%s=%s" % (k, v) for k, v in c.items() if k not in used]
+    if c.get("number_format", "float32") != "float32":
+        extra.append(c["number_format"])
+    return " ".join([text] + extra)
+
+
+def check_labels(rows, path):
+    """Exits 2 when two configurations of a family and scene would share a label."""
+    seen = {}
+    for k, r in enumerate(rows, 1):
+        other = seen.setdefault((r["family"], r["scene"], r["label"]), (k, r["configuration"]))
+        if other[1] != r["configuration"]:
+            fail("%s: rows %d and %d: configurations %r and %r would share the label %r" %
+                 (path, other[0], k, other[1], r["configuration"], r["label"]))
 
 
 def front(runs, cost):
@@ -515,4 +538,5 @@ def main():
     print("\n%s: every plot and every run" % os.path.join(out_dir, "index.html"), file=sys.stderr)
 
 
-main()
+if __name__ == "__main__":  # (importable: the scripts test reads its labels)
+    main()

@@ -103,6 +103,14 @@ csv wall-abc.csv "$(row 0 abc 1e-07)"
 csv rmse-inf.csv "$(row 0 0.01 inf)"
 csv config-bad.csv "$(row 0 0.01 1e-07 'what=ever')"
 csv header-only.csv
+prow() {  # prow RUN CONFIG: a sweep row of the parallax scene
+  echo "$1,parallax,golden/parallax-steps/scene.json,$2,0.01,1000,100,1,2,3,4,5,6,0,0,1e-06,1e-05,100,0.01,0.01,0.01,0.01,1"
+}
+cone='materials.carved.method=cone;materials.carved.max_iterations=64'
+csv cones.csv "$(prow 0 "$cone;pipeline.number_format=float32")" \
+  "$(prow 1 "$cone;materials.carved.cones=relaxed;pipeline.number_format=float32")" \
+  "$(prow 2 "$cone;materials.carved.cones=relaxed;pipeline.number_format=float16")"
+csv same-label.csv "$(prow 0 "$cone")" "$(prow 1 'materials.carved.max_iterations=64;materials.carved.method=cone')"
 printf 'run,family\n0,normal\n' >"$work/columns.csv"
 printf '%s\n0,normal\0,x\n' "$header" >"$work/nul.csv"
 sweep() {  # sweep FOLDER SHARDS ARGS: a results folder with its manifest, ARGS its run options
@@ -267,6 +275,13 @@ bad plot-config "row 1: 'what=ever'" plot.py config-bad.csv plots
 bad plot-columns "no column scene" plot.py columns.csv plots
 bad plot-empty "header-only.csv: no runs" plot.py header-only.csv plots
 bad plot-nul "nul.csv" plot.py nul.csv plots
+bad plot-same-label "would share the label 'cone 64'" plot.py same-label.csv plots
+# Every point's label its own: classic and relaxed cones, the number format where not float32.
+labels() {  # labels CSV: plot.py's label of each row, one a line
+  (cd "$work" && "$python" -S -c 'import sys; sys.path.insert(0, sys.argv[1]); import plot
+for r in plot.load(sys.argv[2]): print(r["label"])' "$scripts" "$1")
+}
+expect plot-labels-unique [ "$(labels cones.csv)" == $'cone 64\nrelaxed cone 64\nrelaxed cone 64 float16' ]
 
 # --- The reports and helpers: their arguments.
 bad scaling-usage "usage" scaling.py "$bin"
