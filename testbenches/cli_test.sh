@@ -215,5 +215,49 @@ check px-cache-relaxed 0 "$bin" render "${px[@]}" -o "$tmp/px/c4.exr" --map-cach
 # A mesh through assimp, from the scenes folder.
 check mesh 0 "$bin" reference "$src/scenes/knot.json" -o "$tmp/knot.exr" --set camera.resolution=[96,64]
 
+# The timeline's counters do not depend on --stats (its bins were 10 000 cycles with it,
+# 256 without); every FIFO track is full at its depth; a region's trace names the frame's
+# cycles too; the waveforms carry the time in cycles, their tree open.
+sphere=$src/golden/sphere/scene.json
+check timeline-alone 0 "$bin" render "$sphere" -o "$tmp/t1.exr" --timeline "$tmp/t1.json"
+check timeline-stats 0 "$bin" render "$sphere" -o "$tmp/t2.exr" --timeline "$tmp/t2.json" --stats "$tmp/t2-stats.json"
+counters() { grep '"ph": "C"' "$1"; }
+if [[ -n $(counters "$tmp/t1.json") && "$(counters "$tmp/t1.json")" == "$(counters "$tmp/t2.json")" ]]; then ((passes++))
+else echo "FAIL timeline-bins: the counters differ with --stats"; ((failures++)); fi
+python3 - "$tmp/t2.json" "$tmp/t2-stats.json" <<'PY' && ((passes++)) || { echo "FAIL timeline-scale: see above"; ((failures++)); }
+import json, sys
+t, s = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+o = t["otherData"]
+fifos = {e["name"] for e in t["traceEvents"] if e["ph"] == "C" and e["name"].endswith(" FIFO")}
+assert fifos and set(o["counter_full"]) == fifos, (fifos, o["counter_full"])
+depths = {name + " FIFO": b["fifo_depth"] for name, b in s["blocks"].items() if name + " FIFO" in fifos}
+assert o["counter_full"] == depths, (o["counter_full"], depths)
+assert o["frame_cycles"] == s["frame_cycles"] and o["region"] is False, o
+assert s["utilization_over_time"]["bin_cycles"] == 10000
+PY
+check region-trace 0 "$bin" render "$sphere" -o "$tmp/t3.exr" --timeline "$tmp/t3.json" --vcd "$tmp/w.vcd" \
+  --trace-region 10,10,40,40
+python3 - "$tmp/t3.json" "$tmp/t1.json" "$tmp/w.vcd" "$tmp/w.gtkw" <<'PY' && ((passes++)) || { echo "FAIL region-trace: see above"; ((failures++)); }
+import json, re, sys
+t, whole = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+o = t["otherData"]
+last = max(e["ts"] + e["dur"] for e in t["traceEvents"] if e["ph"] == "X")
+assert o["region"] is True and o["frame_cycles"] == whole["otherData"]["frame_cycles"] > last, (o, last)
+vcd, gtkw = open(sys.argv[3]).read(), open(sys.argv[4]).read()
+ident = re.search(r"\$var wire 32 (\S+) cycle \[31:0\] \$end", vcd).group(1)
+period_ps = 1e6 / o["clock_mhz"]
+# At every time step the cycle signal is the time over the period (but the last, the
+# dump's end, which changes nothing).
+steps = re.findall(r"^#(\d+)\n((?:[^#].*\n)*)", vcd, re.M)
+checked = 0
+for time, changes in steps[:-1]:
+    m = re.search(r"^b([01]+) " + re.escape(ident) + "$", changes, re.M)
+    assert m, time
+    assert int(m.group(1), 2) == round(int(time) / period_ps), (time, m.group(1))
+    checked += 1
+assert checked > 10, checked
+assert "[treeopen] shadetlm." in gtkw and "shadetlm.cycle[31:0]" in gtkw
+PY
+
 echo "$passes passed, $failures failed"
 [[ $failures -eq 0 ]]

@@ -119,16 +119,28 @@ void Timeline::write_flows(std::string& text, const std::vector<std::vector<uint
   }
 }
 
-void Timeline::add_fifo_series(const std::vector<std::string>& names, uint64_t end) {
+void Timeline::add_fifo_series(const std::vector<std::string>& names, const std::vector<uint64_t>& depths,
+                               uint64_t end) {
+  frame_cycles_ = end;
   for (size_t b = 0; b < waited_.size(); ++b)
-    if (!waited_[b].empty()) add_series(names[b] + " FIFO", "pixels", fifo_bin_, waited_[b], end, 1);
+    if (!waited_[b].empty()) {
+      add_series(names[b] + " FIFO", "pixels", fifo_bin_, waited_[b], end, 1);
+      series_.back().full = double(depths[b]);
+    }
 }
 
 std::string Timeline::json(const std::vector<std::string>& names, double clock_mhz, const std::string& scene) const {
   std::string text;
   Json out{text};
   out << "{\"otherData\": {\"time_unit\": \"cycles\", \"clock_mhz\": " << clock_mhz
-      << ", \"version\": " << quoted(core::kVersion) << ", \"scene\": " << quoted(scene) << "},\n\"traceEvents\": [\n"
+      << ", \"version\": " << quoted(core::kVersion) << ", \"scene\": " << quoted(scene)
+      // For the viewer: the frame's cycles beside the trace's (a region's ends sooner),
+      // and the value that fills a counter's track (a FIFO's depth).
+      << ", \"frame_cycles\": " << frame_cycles_ << ", \"region\": " << (region_ ? "true" : "false") << ", \"counter_full\": {";
+  bool first = true;
+  for (const auto& s : series_)
+    if (s.full > 0) out << (first ? "" : ", ") << quoted(s.name) << ": " << s.full, first = false;
+  out << "}},\n\"traceEvents\": [\n"
       << "{\"ph\": \"M\", \"pid\": 1, \"name\": \"process_name\", \"args\": {\"name\": \"shadetlm pipeline\"}}";
   for (size_t b = 0; b < names.size(); ++b)  // the tracks, in pipeline order
     out << ",\n{\"ph\": \"M\", \"pid\": 1, \"tid\": " << uint64_t(b) << ", \"name\": \"thread_name\", \"args\": {\"name\": "

@@ -29,6 +29,7 @@ class Timeline {
     std::string name, unit;
     uint64_t bin = 0, end = 0;
     std::vector<double> per_bin;  // the counter's value over each bin
+    double full = 0;              // the value that fills its track (a FIFO's depth; 0: its peak)
   };
 
   void add_triangle(uint32_t block, uint64_t start, uint64_t busy, uint32_t triangle) {
@@ -56,8 +57,9 @@ class Timeline {
   // cycles, times `scale` (100: a percentage).
   void add_series(const std::string& name, const std::string& unit, uint64_t bin, const std::vector<uint64_t>& totals,
                   uint64_t end, double scale);
-  // After the run: each FIFO's mean occupancy over each bin, up to cycle `end`.
-  void add_fifo_series(const std::vector<std::string>& block_names, uint64_t end);
+  // After the run: each FIFO's mean occupancy over each bin, up to cycle `end` (the
+  // frame's last), each track full at its FIFO's depth.
+  void add_fifo_series(const std::vector<std::string>& block_names, const std::vector<uint64_t>& depths, uint64_t end);
   // A traced region: the counters' bins are written only where they overlap the slices.
   void limit_to_region() { region_ = true; }
   const std::vector<Slice>& slices() const { return slices_; }
@@ -78,6 +80,7 @@ class Timeline {
   std::vector<std::vector<uint64_t>> waited_;  // per block and bin: the cycles its pixels waited
   std::vector<Series> series_;
   bool region_ = false;
+  uint64_t frame_cycles_ = 0;  // the frame's (add_fifo_series)
 };
 
 // The viewer's page (modules/common/timeline_viewer.html, built in) with `json` in place.

@@ -98,11 +98,17 @@ void Tracer::write_vcd(core::OutputSet& outputs, const std::string& path) {
     double written = 0;
   };
   std::vector<std::vector<Signal>> signals(info_.size());
-  size_t next_id = 1;  // 0: end_of_trace
+  size_t next_id = 2;  // 0: end_of_trace, 1: cycle
   core::CheckedFile file(outputs.temporary(path), path);
   VcdText vcd(file);
   vcd << "$version shadetlm " << core::kVersion << " $end\n$timescale 1 ps $end\n$scope module shadetlm $end\n"
-      << "$var wire 1 " << vcd_id(0) << " end_of_trace $end\n";
+      << "$var wire 1 " << vcd_id(0) << " end_of_trace $end\n"
+      // The time in cycles, the model's own unit (the axis is in ps: a cycle is the period).
+      << "$var wire 32 " << vcd_id(1) << " cycle [31:0] $end\n";
+  auto write_cycle = [&](uint64_t cycle) {
+    vcd.binary(uint32_t(cycle));
+    vcd << " " << vcd_id(1) << "\n";
+  };
   for (size_t p = 0; p < info_.size(); ++p) {
     vcd << "$scope module " << info_[p].block << " $end\n";
     for (size_t k = 0; k < info_[p].names.size(); ++k) {
@@ -147,6 +153,7 @@ void Tracer::write_vcd(core::OutputSet& outputs, const std::string& path) {
   const double ps = period_.to_seconds() * 1e12;
   auto time_of = [&](uint64_t cycle) { return uint64_t(std::llround(double(cycle) * ps)); };
   vcd << "#0\n$dumpvars\n0" << vcd_id(0) << "\n";
+  write_cycle(0);
   dump(true);
   vcd << "$end\n";
   std::vector<Event> events;  // three a record: its pixel, its handshake, then gone
@@ -179,6 +186,7 @@ void Tracer::write_vcd(core::OutputSet& outputs, const std::string& path) {
     vcd << "#";
     vcd.number(time_of(cycle));
     vcd << "\n";
+    write_cycle(cycle);
     dump(false);
   }
   // The dump runs 10 % past the traced span, so that a viewer's window on the whole
@@ -186,7 +194,9 @@ void Tracer::write_vcd(core::OutputSet& outputs, const std::string& path) {
   const uint64_t end = std::max<uint64_t>(last_ + (last_ - first_) / 10 + 1, 1);
   vcd << "#";
   vcd.number(time_of(end));
-  vcd << "\n1" << vcd_id(0) << "\n#";
+  vcd << "\n1" << vcd_id(0) << "\n";
+  write_cycle(end);
+  vcd << "#";
   vcd.number(time_of(end + 1));
   vcd << "\n";
   vcd.flush();

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -138,9 +139,11 @@ class Top : public sc_core::sc_module {
       if (line_->dram()) log_->memory(dram);
     }
     for (size_t i = 0; i <= line.size(); ++i) modules_[i]->join_line(line_.get(), int(i) - 1);
+    // Over time, in bins of kept_bin cycles: the timeline's counters and the stats'
+    // over_time are each regrouped from them, so neither's bins depend on the other's.
+    kept_bin_ = kept_bin(inspect);
     // The DRAM's bytes over time: for the timeline's counter and the stats' over_time.
-    if (line_->dram() && (inspect.bin_cycles > 0 || !inspect.timeline.empty()))
-      line_->dram()->keep_histogram(inspect.bin_cycles > 0 ? inspect.bin_cycles : kTimelineBin);
+    if (line_->dram() && kept_bin_ > 0) line_->dram()->keep_histogram(kept_bin_);
 
     const core::Camera& camera = pipeline.scene().camera;
     region_ = inspect.region;
@@ -148,7 +151,7 @@ class Top : public sc_core::sc_module {
     const TraceRegion* filter = inspect.region_given ? &region_ : nullptr;
     if (!inspect.vcd.empty()) tracer_ = std::make_unique<Tracer>(region_, period_);
     Timeline* timeline = inspect.timeline.empty() ? nullptr : &timeline_;
-    if (timeline) timeline_.keep_fifos(uint32_t(modules_.size()), inspect.bin_cycles > 0 ? inspect.bin_cycles : kTimelineBin);
+    if (timeline) timeline_.keep_fifos(uint32_t(modules_.size()), kTimelineBin);
     if (!inspect.vectors.empty())
       for (auto& m : modules_)
         if (auto layout = m->vector_layout()) {
@@ -160,7 +163,7 @@ class Top : public sc_core::sc_module {
       const int probe = tracer_ && !names.empty() ? tracer_->add_probe(pipeline.blocks()[i].name, names) : -1;
       modules_[i]->attach(tracer_.get(), probe, timeline, uint32_t(i), filter);
       // Utilization over time: for the stats' over_time and the timeline's counters.
-      modules_[i]->keep_histogram(inspect.bin_cycles > 0 ? inspect.bin_cycles : timeline ? kTimelineBin : 0);
+      modules_[i]->keep_histogram(kept_bin_);
       if (kTracing && (tracer_ || timeline) && i >= 1 && i <= line.size()) line_->watch(modules_[i].get());
     }
     // Waveforms of a region alone: the other packets need no times (the timeline's FIFO
@@ -175,9 +178,15 @@ class Top : public sc_core::sc_module {
   Timeline& timeline_slices() { return timeline_; }
   const std::vector<std::unique_ptr<VectorFile>>& vectors() const { return vectors_; }
   PixelLine& line() { return *line_; }
-  // The timeline's utilization and DRAM counters, without a bin asked for: a point
-  // every this many cycles.
-  static constexpr uint64_t kTimelineBin = 256;
+  // The timeline's utilization, DRAM and FIFO counters: a point every this many cycles,
+  // with or without the stats' bins (a divisor of render --stats's 10 000).
+  static constexpr uint64_t kTimelineBin = 250;
+  // The bins kept while running: fine enough for the timeline's and the stats' (0: none).
+  static uint64_t kept_bin(const Inspect& inspect) {
+    const uint64_t timeline = inspect.timeline.empty() ? 0 : kTimelineBin;
+    return std::gcd(timeline, inspect.bin_cycles);  // (gcd(0, b) = b)
+  }
+  uint64_t kept_bin() const { return kept_bin_; }
   std::vector<std::string> names() const {
     std::vector<std::string> n;
     for (const auto& m : modules_) n.push_back(m->block_name());
@@ -193,6 +202,7 @@ class Top : public sc_core::sc_module {
   Timeline timeline_;
   std::unique_ptr<PixelLine> line_;
   std::unique_ptr<TimingLog> log_;
+  uint64_t kept_bin_ = 0;
 };
 
 }  // namespace
@@ -241,18 +251,31 @@ RenderResult render_systemc(const core::Scene& scene, const PipelineDecl& declar
 }
 
 namespace {
+// Bins of `from` cycles summed into bins of `to`, a multiple of `from`.
+std::vector<uint64_t> regroup(const std::vector<uint64_t>& bins, uint64_t from, uint64_t to) {
+  if (from == to || bins.empty()) return bins;
+  const size_t k = size_t(to / from);
+  std::vector<uint64_t> out((bins.size() + k - 1) / k, 0);
+  for (size_t i = 0; i < bins.size(); ++i) out[i / k] += bins[i];
+  return out;
+}
+
 // The timeline's counters from the run's bins (each block's busy cycles, the DRAM's
 // bytes, the FIFOs' occupancy), then the file.
 void write_timeline(core::OutputSet& outputs, Top& top, const RenderResult& r, const Inspect& inspect,
                     const std::string& scene) {
   Timeline& timeline = top.timeline_slices();
-  const uint64_t bin = inspect.bin_cycles > 0 ? inspect.bin_cycles : Top::kTimelineBin;
+  const uint64_t bin = Top::kTimelineBin;
   for (const auto& m : top.modules())
     if (!m->times().busy_per_bin.empty())
-      timeline.add_series(m->block_name() + " utilization", "percent", bin, m->times().busy_per_bin, r.frame_cycles, 100);
+      timeline.add_series(m->block_name() + " utilization", "percent", bin,
+                          regroup(m->times().busy_per_bin, top.kept_bin(), bin), r.frame_cycles, 100);
   if (const Dram* dram = top.line().dram(); dram && !dram->bytes_per_bin().empty())
-    timeline.add_series("DRAM bandwidth", "bytes_per_cycle", bin, dram->bytes_per_bin(), r.frame_cycles, 1);
-  timeline.add_fifo_series(top.names(), r.frame_cycles);
+    timeline.add_series("DRAM bandwidth", "bytes_per_cycle", bin, regroup(dram->bytes_per_bin(), top.kept_bin(), bin),
+                        r.frame_cycles, 1);
+  std::vector<uint64_t> depths;
+  for (const auto& m : top.modules()) depths.push_back(m->timing().fifo_depth);
+  timeline.add_fifo_series(top.names(), depths, r.frame_cycles);
   if (inspect.region_given) timeline.limit_to_region();
   timeline.write(outputs, inspect.timeline, top.names(), r.clock_mhz, scene);
 }
@@ -301,7 +324,7 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
     report.stats = m.stats();
     report.timing = m.timing();
     report.last_cycle = m.times().last;
-    report.busy_per_bin = m.times().busy_per_bin;
+    if (inspect.bin_cycles > 0) report.busy_per_bin = regroup(m.times().busy_per_bin, top.kept_bin(), inspect.bin_cycles);
     r.frame_cycles = std::max(r.frame_cycles, uint64_t(report.last_cycle + 1));
     // Every packet the raster puts out reaches the end of the chain.
     if (pipeline.blocks()[i].block->kind() == Block::Kind::Raster) r.pixels_shaded = report.stats.pixels;
@@ -329,7 +352,8 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
     write_gtkw(outputs, inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw", inspect.vcd, top.tracer()->probes(),
                double(first) * ps, double(last) * ps);
   }
-  if (const Dram* dram = top.line().dram(); dram && inspect.bin_cycles > 0) r.dram_bytes_per_bin = dram->bytes_per_bin();
+  if (const Dram* dram = top.line().dram(); dram && inspect.bin_cycles > 0)
+    r.dram_bytes_per_bin = regroup(dram->bytes_per_bin(), top.kept_bin(), inspect.bin_cycles);
   if (!inspect.timeline.empty()) write_timeline(outputs, top, r, inspect, pipeline.scene().file);
   for (const auto& v : top.vectors()) {
     for (bool in : {true, false}) outputs.write(vector_path(inspect.vectors, v->block(), in), v->text(in));
@@ -361,12 +385,13 @@ void write_gtkw(core::OutputSet& outputs, const std::string& path, const std::st
         << "[dumpfile] \"" << std::filesystem::path(vcd).filename().string() << "\"\n"
         << "[savefile] \"" << std::filesystem::path(path).filename().string() << "\"\n"
         << "[timestart] " << uint64_t(from_ps) << "\n[size] 1400 900\n[sst_width] 200\n[signals_width] 240\n"
-        << "[sst_expanded] 1\n";
+        << "[sst_expanded] 1\n[treeopen] shadetlm.\n";
     // Zoom: GTKWave 3.3 shows about 4.3·2^-zoom time units (ps here) across its default
     // wave pane (measured through its Tcl interface); show the window and 5 % more (the
     // dump runs 10 % past the traced span: a window past the dump's end resets the start).
     const double zoom = -std::log2(std::max(1.0, (to_ps - from_ps) * 1.05 / 4.3));
     out << "*" << std::fixed << zoom << " -1\n";
+    out << "@24\nshadetlm.cycle[31:0]\n";  // the time in cycles, first
     for (const auto& p : probes) {
       out << "@800200\n-" << p.block << "\n";  // a group per block
       for (size_t k = 0; k < p.names.size(); ++k) {
