@@ -439,7 +439,7 @@ def cycles_line(r):
 
 
 def accept_command(scenes):
-    return "REGEN_GOLDEN=1 scripts/regress.sh" + "".join(" --scene " + s for s in scenes)
+    return "REGEN_GOLDEN=1 scripts/regress.sh --no-build" + "".join(" --scene " + s for s in scenes)
 
 
 def command(cmd):

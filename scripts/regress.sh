@@ -5,11 +5,19 @@
 # Writes out/report/index.html (failures first). Exit 0 when everything passes.
 # REGEN_GOLDEN=1 rewrites only what fails or is missing, and prints what changed (never
 # under CI). ctest -L golden runs the same checks as tests (docs/regression.md).
-# Usage: scripts/regress.sh [--scene NAME ...]
+# Usage: scripts/regress.sh [--no-build] [--scene NAME ...]
+#   --no-build: the program as built (build/app/shadetlm), no setup and no build first: the
+#   report's accept commands use it, since the run they accept has just built it.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-"$root/scripts/setup.sh"
-"$root/scripts/build.sh" >/dev/null
+if [[ ${1:-} == --no-build ]]; then
+  shift
+  [[ -x $root/build/app/shadetlm ]] ||
+    { echo "regress.sh: --no-build: $root/build/app/shadetlm is not built (scripts/build.sh builds it)" >&2; exit 2; }
+else
+  "$root/scripts/setup.sh"
+  "$root/scripts/build.sh" >/dev/null
+fi
 out=$root/out/report
 rm -rf "$out"
 mkdir -p "$out"
