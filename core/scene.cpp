@@ -338,14 +338,22 @@ struct TextureRefs {
   std::vector<Texture>& textures;                    // the scene's, grown by decoded copies
   std::map<int, int> decoded;  // sRGB texture → its linear copy, made once
   std::map<int, int> normals;  // 8- or 16-bit normal map → its decoded copy (2x − 1), made once
+  std::map<std::pair<int, std::string>, int> remapped;  // (normal map, channels) → its copy in the model's axes
 
   // The normal map that `key` names (-1 if absent): an EXR as stored (N), an 8- or
   // 16-bit image decoded from (N + 1) / 2, whatever its colorspace says.
-  int read_normal_map(JsonReader& r, const std::string& key) {
-    const int i = read(r, key, false);
-    if (i < 0 || !textures[size_t(i)].unorm) return i;
-    auto [d, fresh] = normals.emplace(i, static_cast<int>(textures.size()));
-    if (fresh) textures.push_back(decode_unorm_normals(textures[size_t(i)]));
+  // Read through the material's `channels` (normal_map_channels) when they are not R, G,
+  // B as x, y, z: a copy per map and reading, made once.
+  int read_normal_map(JsonReader& r, const std::string& key, const NormalChannels& channels) {
+    int i = read(r, key, false);
+    if (i >= 0 && textures[size_t(i)].unorm) {
+      auto [d, fresh] = normals.emplace(i, static_cast<int>(textures.size()));
+      if (fresh) textures.push_back(decode_unorm_normals(textures[size_t(i)]));
+      i = d->second;
+    }
+    if (i < 0 || channels.identity()) return i;
+    auto [d, fresh] = remapped.emplace(std::pair(i, channels.text()), static_cast<int>(textures.size()));
+    if (fresh) textures.push_back(remap_normal_channels(textures[size_t(i)], channels));
     return d->second;
   }
 
@@ -402,6 +410,29 @@ void read_parallax(JsonReader pr, ParallaxSettings& ps) {
   pr.finish();
 }
 
+// A material's normal_map_channels: for each stored channel R, G, B, the model's axis it
+// holds, with an optional sign ("x", "-y", "z"); each axis once.
+NormalChannels read_normal_channels(JsonReader& r, const std::string& key) {
+  NormalChannels c;
+  if (!r.has(key)) return c;
+  const auto items = r.array(key);
+  if (items.size() != 3)
+    r.fail(key, "expected three axes, the ones R, G and B hold, e.g. [\"x\", \"-y\", \"z\"] (green down)");
+  bool seen[3] = {false, false, false};
+  for (int k = 0; k < 3; ++k) {
+    const auto& [value, field] = items[size_t(k)];
+    std::string axis = value->is_string() ? value->get<std::string>() : "";
+    c.sign[k] = !axis.empty() && axis[0] == '-' ? -1.0f : 1.0f;
+    if (!axis.empty() && (axis[0] == '-' || axis[0] == '+')) axis.erase(0, 1);
+    if (axis != "x" && axis != "y" && axis != "z")
+      throw InputError(r.file(), field, "expected x, y or z, with a sign if it is read negated (\"-y\")");
+    c.axis[k] = axis[0] - 'x';
+    if (seen[c.axis[k]]) throw InputError(r.file(), field, "the axis " + axis + " is held by two channels");
+    seen[c.axis[k]] = true;
+  }
+  return c;
+}
+
 // One member of the materials object: colours, textures, path and its settings, checked
 // against the path.
 Material read_material(JsonReader r, const std::string& name, TextureRefs& texture_refs) {
@@ -416,7 +447,9 @@ Material read_material(JsonReader r, const std::string& name, TextureRefs& textu
   m.height_scale = r.number("height_scale", 0.0, 0, 1e6);
   if (r.has("height_scale") && m.height_map < 0)
     r.fail("height_scale", "given without a height_map");
-  m.normal_map = texture_refs.read_normal_map(r, "normal_map");
+  const NormalChannels channels = read_normal_channels(r, "normal_map_channels");
+  if (r.has("normal_map_channels") && !r.has("normal_map")) r.fail("normal_map_channels", "given without a normal_map");
+  m.normal_map = texture_refs.read_normal_map(r, "normal_map", channels);
   m.square_k = r.number("square_k", 1.0, kMinLength, kMaxLength);
   m.path = parse_shading_path(r.choice("path", std::string("phong"),
                                        {"phong", "bump-classic", "bump-tangent", "bump-square", "bump-object",

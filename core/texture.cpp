@@ -142,6 +142,32 @@ Texture decode_unorm_normals(const Texture& t) {
   return d;
 }
 
+bool NormalChannels::identity() const {
+  for (int c = 0; c < 3; ++c)
+    if (axis[c] != c || sign[c] != 1) return false;
+  return true;
+}
+
+std::string NormalChannels::text() const {
+  std::string out;
+  for (int c = 0; c < 3; ++c) out += std::string(c ? "," : "") + (sign[c] < 0 ? "-" : "") + char('x' + axis[c]);
+  return out;
+}
+
+Texture remap_normal_channels(const Texture& t, const NormalChannels& channels) {
+  auto remap = [&](std::vector<glm::vec4>& texels) {
+    for (auto& v : texels) {
+      glm::vec4 n = v;
+      for (int c = 0; c < 3; ++c) n[channels.axis[c]] = channels.sign[c] * v[c];
+      v = n;
+    }
+  };
+  Texture out = t;
+  remap(out.texels);
+  for (auto& level : out.mips) remap(level.texels);
+  return out;
+}
+
 Texture decode_srgb(const Texture& t) {
   Texture out = t;
   for (auto& c : out.texels)

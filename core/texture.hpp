@@ -32,6 +32,19 @@ Texture decode_srgb(const Texture& t);
 // A normal map read from an 8- or 16-bit image: x ↦ 2x − 1 on R, G, B, the stored
 // (N + 1) / 2 back to N (docs/scene-format.md).
 Texture decode_unorm_normals(const Texture& t);
+// How a normal map's stored channels R, G, B hold the model's axes (a material's
+// normal_map_channels): channel c holds sign[c] times axis axis[c] (0 x, 1 y, 2 z). The
+// default reads R, G, B as x, y, z (OpenGL's and glTF's tangent space); a map whose
+// green points down (DirectX's) is x, −y, z.
+struct NormalChannels {
+  int axis[3] = {0, 1, 2};
+  float sign[3] = {1, 1, 1};
+  bool identity() const;
+  std::string text() const;  // e.g. "x,-y,z"
+};
+// The normal map read through `channels`: each texel's (and mip level's) normal in the
+// model's axes (alpha untouched).
+Texture remap_normal_channels(const Texture& t, const NormalChannels& channels);
 // A normal's component as such an image stores it in `bits`: (n + 1) / 2 in
 // 0 … 2^bits − 1, rounded to nearest (clamped to [−1, 1]).
 uint32_t encode_unorm(float n, int bits);

@@ -380,6 +380,76 @@ TEST_CASE("an 8-bit normal map file is read as (N + 1) / 2 and decoded as 2x - 1
   std::filesystem::remove_all(dir);
 }
 
+// A 2×2 normal map PNG (N + 1) / 2 of the given bytes, in a fresh folder; a scene over it.
+namespace {
+std::filesystem::path normal_map_png(const std::string& name, const unsigned char (&bytes)[4][3]) {
+  const auto dir = test::temp_dir(name);
+  std::vector<unsigned char> rgb(bytes[0], bytes[0] + 12);
+  std::ofstream((dir / "nm.png").string(), std::ios::binary) << core::encode_png(2, 2, rgb);
+  return dir;
+}
+core::Scene normal_map_scene(const std::filesystem::path& dir, const std::string& channels, int size = 8) {
+  const std::string text = R"({"format": 1, "camera": {"position": [0, 0, 3], "target": [0, 0, 0], "resolution": [)" +
+                           std::to_string(size) + "," + std::to_string(size) + R"(]},
+    "lights": [{"type": "directional", "direction": [-0.5, -0.6, -1]}],
+    "textures": {"nm": {"type": "image", "file": "nm.png", "colorspace": "linear"}},
+    "materials": {"m": {"path": "bump-tangent", "normal_map": "nm")" +
+                           (channels.empty() ? "" : ", \"normal_map_channels\": " + channels) + R"(}},
+    "objects": [{"shape": "sphere", "material": "m"}]})";
+  return core::load_scene_text(text, "nm.json", dir.string());
+}
+const core::Texture& normal_map_of(const core::Scene& scene) {
+  return scene.textures[size_t(scene.materials[size_t(scene.objects[0].material)].normal_map)];
+}
+}  // namespace
+
+TEST_CASE("normal_map_channels: a map's green up or down, an object-space map's axes, read as declared", "[bump]") {
+  // N = (0, 0, 1), (1, 0, 0), (0, -1, 0), (0.6, 0, 0.8) as stored bytes.
+  const unsigned char bytes[4][3] = {{128, 128, 255}, {255, 128, 128}, {128, 0, 128}, {204, 128, 230}};
+  const auto dir = normal_map_png("nm-channels", bytes);
+  auto stored = [&](int i, int c) { return bytes[i][c] / 255.0 * 2 - 1; };
+  // Green down (DirectX): texel 2's stored -1 in green is +1 on y.
+  const core::Scene down_scene = normal_map_scene(dir, R"(["x", "-y", "z"])");
+  const core::Texture& down = normal_map_of(down_scene);
+  CHECK(down.texels[2].y == Approx(1).margin(1e-6));
+  // A Z-up tool's object-space map, the mesh read Y-up as (x, y, z) = (X, Z, -Y): R holds
+  // x, G (the tool's Y) -z, B (its Z) y.
+  const core::Scene z_up_scene = normal_map_scene(dir, R"(["x", "-z", "y"])");
+  const core::Texture& z_up = normal_map_of(z_up_scene);
+  CHECK(z_up.texels[2].z == Approx(1).margin(1e-6));   // the tool's -Y is the model's +z
+  CHECK(z_up.texels[0].y == Approx(1).margin(0.01));   // the tool's up (B = 1) is the model's up
+  for (int i = 0; i < 4; ++i) {
+    CHECK(down.texels[size_t(i)].x == Approx(stored(i, 0)).margin(1e-6));
+    CHECK(down.texels[size_t(i)].y == Approx(-stored(i, 1)).margin(1e-6));
+    CHECK(down.texels[size_t(i)].z == Approx(stored(i, 2)).margin(1e-6));
+    CHECK(z_up.texels[size_t(i)].x == Approx(stored(i, 0)).margin(1e-6));
+    CHECK(z_up.texels[size_t(i)].z == Approx(-stored(i, 1)).margin(1e-6));
+    CHECK(z_up.texels[size_t(i)].y == Approx(stored(i, 2)).margin(1e-6));
+  }
+  // The default, and the default spelled out, read R, G, B as x, y, z.
+  const core::Scene plain_scene = normal_map_scene(dir, ""), spelled_scene = normal_map_scene(dir, R"(["+x", "y", "z"])");
+  const core::Texture &plain = normal_map_of(plain_scene), &spelled = normal_map_of(spelled_scene);
+  for (int i = 0; i < 4; ++i) CHECK(glm::vec3(plain.texels[size_t(i)]) == glm::vec3(spelled.texels[size_t(i)]));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a green-down normal map declared so renders as its green-up twin", "[bump]") {
+  // One map written twice: green up, and with its green bytes inverted (255 - g).
+  const unsigned char up[4][3] = {{128, 170, 230}, {90, 140, 240}, {150, 60, 220}, {128, 128, 255}};
+  unsigned char down[4][3];
+  for (int i = 0; i < 4; ++i) down[i][0] = up[i][0], down[i][1] = uint8_t(255 - up[i][1]), down[i][2] = up[i][2];
+  const auto up_dir = normal_map_png("nm-up", up), down_dir = normal_map_png("nm-down", down);
+  const core::Frame a = modules::render_loop(normal_map_scene(up_dir, "", 48)).frame;
+  const core::Frame b = modules::render_loop(normal_map_scene(down_dir, R"(["x", "-y", "z"])", 48)).frame;
+  const core::Frame wrong = modules::render_loop(normal_map_scene(down_dir, "", 48)).frame;
+  core::CompareOptions o;
+  o.layers = {"RGB"};
+  // (2(255 - g)/255 - 1 is -(2g/255 - 1) up to float rounding: equal to 1e-6, not bit for bit.)
+  CHECK(core::compare_frames(a, b, o).layers.at(0).max_abs < 1e-5);
+  CHECK(core::compare_frames(a, wrong, o).layers.at(0).max_abs > 1e-2);  // the convention matters here
+  std::filesystem::remove_all(up_dir), std::filesystem::remove_all(down_dir);
+}
+
 TEST_CASE("Phong's H interpolated as Fig. 1 draws it: fewer operations a pixel, less exact near a point light", "[bump][accuracy]") {
   struct Run {
     double psnr;

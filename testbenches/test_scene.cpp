@@ -157,6 +157,25 @@ TEST_CASE("a mistyped setting or value is answered with the nearest and not a li
   CHECK_THAT(what, Catch::Contains("did you mean \"exact\"?"));
 }
 
+TEST_CASE("normal_map_channels: three axes, each once, with a normal map", "[scene][bad]") {
+  json doc = minimal();
+  doc["textures"] = {{"nm", {{"type", "checker"}, {"size", {8, 8}}}}};
+  doc["materials"]["m"] = {{"path", "bump-tangent"}, {"normal_map", "nm"}};
+  auto with = [&](json channels) {
+    json d = doc;
+    d["materials"]["m"]["normal_map_channels"] = channels;
+    return error_of(d);
+  };
+  CHECK(with({"x", "-y"}).first == "materials.m.normal_map_channels");
+  CHECK(with({"x", "w", "z"}).first == "materials.m.normal_map_channels.1");
+  CHECK(with({"x", "-x", "z"}).first == "materials.m.normal_map_channels.1");
+  CHECK_THAT(with({"x", "-x", "z"}).second, Catch::Contains("two channels"));
+  CHECK(with({"x", 1, "z"}).first == "materials.m.normal_map_channels.1");
+  json lone = minimal();
+  lone["materials"]["m"]["normal_map_channels"] = {"x", "-y", "z"};
+  CHECK(error_of(lone).first == "materials.m.normal_map_channels");
+}
+
 TEST_CASE("unknown values of choice fields are rejected", "[scene][bad]") {
   json doc = minimal();
   doc["materials"]["m"]["path"] = "phong-fast";
