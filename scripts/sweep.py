@@ -170,6 +170,18 @@ def progress(done, total):
     sys.stderr.flush()
 
 
+def say(text):
+    """A line among the progress bar's (this one's or sweep.sh's, on a terminal): the bar
+    cleared first, so that the text is not written into it; the next update draws it
+    again below."""
+    if not text:
+        return
+    if sys.stderr.isatty():
+        sys.stderr.write("\r\033[K")
+    sys.stderr.write(text if text.endswith("\n") else text + "\n")
+    sys.stderr.flush()
+
+
 def render(tmp, scene, sets, compare):
     """One run's statistics. Without compare the golden model is not rendered: wall_s is
     the simulation's own time (sc_start), which the golden model never enters."""
@@ -191,11 +203,11 @@ def render(tmp, scene, sets, compare):
         shards.fail("%s: cannot run it: %s" % (BIN, e.strerror or e))
     if r.returncode != 0:  # one line: the program's message (its last, or its own "shadetlm: …" line)
         said = [line for line in r.stderr.splitlines() if line.strip()] or ["no message"]
-        print("sweep: %s failed on %s (%s): %s" % (
+        say("sweep: %s failed on %s (%s): %s" % (
             BIN, scene, "exit %d" % r.returncode if r.returncode > 0 else "signal %d" % -r.returncode,
-            next((line for line in reversed(said) if line.startswith("shadetlm: ")), said[-1])), file=sys.stderr)
+            next((line for line in reversed(said) if line.startswith("shadetlm: ")), said[-1])))
         sys.exit(2 if r.returncode == 2 else 1)
-    sys.stderr.write(r.stderr)  # its warnings, if any
+    say(r.stderr)  # its warnings, if any
     try:
         with open(stats_file) as f:
             s = json.load(f)
