@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
       sub = sub->get_subcommands().front();
       where += " " + sub->get_name();
     }
-    std::cerr << where << ": " << e.what() << " (" << where << " --help shows its arguments)\n";
+    std::cerr << where << ": " << core::printable(e.what(), 300) << " (" << where << " --help shows its arguments)\n";
     return 2;
   }
   try {

@@ -27,9 +27,9 @@ def counts(path):
                 if m:
                     out.setdefault(m.group(1), {})[m.group(2)] = float(m.group(3))
                 elaborated = elaborated or line.startswith("== every block elaborated")
-                m = re.match(r"\s+\d+ / \d+ = ([0-9.]+)", line)
-                if elaborated and m and ratio is None:
-                    ratio = float(m.group(1))
+                m = re.match(r"\s+(\d+) / (\d+) = [0-9.]+", line)
+                if elaborated and m and ratio is None:  # (from the counts: the line's ratio is rounded)
+                    ratio = int(m.group(1)) / int(m.group(2))
     except (OSError, ValueError) as e:  # ValueError: bytes that are not text
         fail("%s: cannot read it: %s" % (path, e.strerror if isinstance(e, OSError) else e))
     if not out:

@@ -83,11 +83,13 @@ def main():
     if not os.path.isdir(root):
         fail("%s: not a folder" % root)
     try:  # the files git knows (no build trees or downloads); a plain walk outside a checkout
-        files = subprocess.run(["git", "-C", root, "ls-files", "*.md"], capture_output=True, text=True,
-                               check=True).stdout.split()
+        files = [f for f in subprocess.run(["git", "-C", root, "ls-files", "-z", "*.md"], capture_output=True,
+                                           text=True, check=True).stdout.split("\0") if f]
     except (OSError, subprocess.CalledProcessError):
         files = [os.path.relpath(os.path.join(d, f), root) for d, _, names in os.walk(root) for f in names
-                 if f.endswith(".md") and "/build" not in d]
+                 if f.endswith(".md") and "build" not in os.path.relpath(d, root).split(os.sep)]
+    if not files:  # (a root git does not track, or no documents: nothing would be checked)
+        fail("%s: no Markdown files found" % root)
     problems, links = [], 0
     for md in sorted(files):
         found, count = check(root, md)

@@ -16,7 +16,8 @@ if [[ ${1:-} == --doc ]]; then
   work=$(mktemp -d)
   trap 'rm -rf "$work"' EXIT
   "$root/build/app/shadetlm" render -o "$work/demo.exr" --vcd "$work/trace.vcd" --trace-region 250,170,265,170 >/dev/null
-  exec "$0" "$work/trace.gtkw" "$root/docs/images/gtkwave.png"
+  "$0" "$work/trace.gtkw" "$root/docs/images/gtkwave.png"
+  exit
 fi
 (($# >= 2 && $# <= 3)) || { echo "$usage" >&2; exit 2; }
 view=$1 out=$2 size=${3:-1400x900}
@@ -28,9 +29,10 @@ mkdir -p "$(dirname "$out")"
 out=$(realpath "$out")
 rm -f "$out"
 # In the virtual display: GTKWave from the view's folder (it finds its VCD beside it);
-# wait for its window, fill the screen with it, then take pictures until two in a row are
-# the same (it has drawn the waves), at most 60.
+# wait for its window, fill the screen with it, then take a picture every half second
+# until two in a row are the same (it has drawn the waves), at most 60.
 xvfb-run -a -s "-screen 0 ${size}x24" bash -c '
+  set -o pipefail
   view=$1 out=$2 size=$3
   cd "$(dirname "$view")"
   gtkwave "$view" >/dev/null 2>&1 &
@@ -40,6 +42,7 @@ xvfb-run -a -s "-screen 0 ${size}x24" bash -c '
   xdotool windowmove "$window" 0 0 windowsize "$window" "${size%x*}" "${size#*x}"
   before=
   for try in $(seq 60); do
+    sleep 0.5  # (the interval between pictures that must agree)
     import -window root "$out.try.png"
     now=$(md5sum <"$out.try.png")
     [[ $now == "$before" ]] && { mv "$out.try.png" "$out"; exit 0; }

@@ -5,13 +5,16 @@
 # Writes out/report/index.html (failures first). Exit 0 when everything passes.
 # REGEN_GOLDEN=1 rewrites only what fails or is missing, and prints what changed (never
 # under CI). ctest -L golden runs the same checks as tests (docs/regression.md).
-# Usage: scripts/regress.sh [--no-build] [--scene NAME ...]
+# Usage: scripts/regress.sh [--no-build] [--scene NAME ...]   (options in any order)
 #   --no-build: the program as built (build/app/shadetlm), no setup and no build first: the
 #   report's accept commands use it, since the run they accept has just built it.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-if [[ ${1:-} == --no-build ]]; then
-  shift
+build=1
+args=()
+for a in "$@"; do [[ $a == --no-build ]] && build=0 || args+=("$a"); done
+set -- "${args[@]}"
+if ((build == 0)); then
   [[ -x $root/build/app/shadetlm ]] ||
     { echo "regress.sh: --no-build: $root/build/app/shadetlm is not built (scripts/build.sh builds it)" >&2; exit 2; }
 else

@@ -235,6 +235,18 @@ assert o["counter_full"] == depths, (o["counter_full"], depths)
 assert o["frame_cycles"] == s["frame_cycles"] and o["region"] is False, o
 assert s["utilization_over_time"]["bin_cycles"] == 10000
 PY
+# ... and the stats' utilization over time (blocks and DRAM) do not change with --timeline
+# (its 250-cycle bins summed into the stats' 10 000).
+check stats-dram 0 "$bin" render "$sphere" -o "$tmp/t4.exr" --stats "$tmp/t4.json" --set pipeline.memory.model=dram
+check stats-dram-timeline 0 "$bin" render "$sphere" -o "$tmp/t5.exr" --stats "$tmp/t5.json" --timeline "$tmp/t5.html" \
+  --set pipeline.memory.model=dram
+python3 - "$tmp/t4.json" "$tmp/t5.json" <<'PY' && ((passes++)) || { echo "FAIL stats-over-time: see above"; ((failures++)); }
+import json, sys
+a, b = (json.load(open(f))["utilization_over_time"] for f in sys.argv[1:])
+assert a["bin_cycles"] == b["bin_cycles"] == 10000
+assert a["dram"] and len(a["blocks"]) > 3 and sum(map(len, a["blocks"].values())) > 10, a
+assert a == b, "the stats' utilization over time changed with --timeline"
+PY
 check region-trace 0 "$bin" render "$sphere" -o "$tmp/t3.exr" --timeline "$tmp/t3.json" --vcd "$tmp/w.vcd" \
   --trace-region 10,10,40,40
 python3 - "$tmp/t3.json" "$tmp/t1.json" "$tmp/w.vcd" "$tmp/w.gtkw" <<'PY' && ((passes++)) || { echo "FAIL region-trace: see above"; ((failures++)); }
@@ -244,7 +256,7 @@ o = t["otherData"]
 last = max(e["ts"] + e["dur"] for e in t["traceEvents"] if e["ph"] == "X")
 assert o["region"] is True and o["frame_cycles"] == whole["otherData"]["frame_cycles"] > last, (o, last)
 vcd, gtkw = open(sys.argv[3]).read(), open(sys.argv[4]).read()
-ident = re.search(r"\$var wire 32 (\S+) cycle \[31:0\] \$end", vcd).group(1)
+ident = re.search(r"\$var wire 64 (\S+) cycle \[63:0\] \$end", vcd).group(1)
 period_ps = 1e6 / o["clock_mhz"]
 # At every time step the cycle signal is the time over the period (but the last, the
 # dump's end, which changes nothing).
@@ -256,7 +268,7 @@ for time, changes in steps[:-1]:
     assert int(m.group(1), 2) == round(int(time) / period_ps), (time, m.group(1))
     checked += 1
 assert checked > 10, checked
-assert "[treeopen] shadetlm." in gtkw and "shadetlm.cycle[31:0]" in gtkw
+assert "[treeopen] shadetlm." in gtkw and "shadetlm.cycle[63:0]" in gtkw
 PY
 
 echo "$passes passed, $failures failed"

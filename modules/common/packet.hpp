@@ -2,6 +2,7 @@
 // What travels between the blocks: per triangle, its setup (plane equations and
 // increments); per span, a packet of up to kSpanMax visible pixels of one raster row
 // of one triangle, in structure-of-arrays form, filled in block by block.
+#include <algorithm>
 #include <cstdint>
 #include <type_traits>
 #include <utility>
@@ -119,7 +120,8 @@ struct Work {
   const uint16_t* lines = nullptr;
   uint32_t lead = 0;
   uint32_t lines_at(int i) const { return lines ? lines[i] : 0; }
-  uint32_t at(int i) const { return per_pixel ? per_pixel[i] : i == 0 ? each + lead : each; }
+  // (at most 65535 a pixel, as a per-pixel array holds it)
+  uint32_t at(int i) const { return per_pixel ? per_pixel[i] : i == 0 ? std::min<uint32_t>(each + lead, 65535) : each; }
 };
 
 class FramebufferKernel;

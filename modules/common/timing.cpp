@@ -31,15 +31,17 @@ PixelLine::PixelLine(std::vector<Timing> blocks, DramTiming dram) {
     s.next_depth = j + 1 < blocks.size() ? int64_t(blocks[j + 1].fifo_depth) : 0;
     s.line_bytes = blocks[j].line_bytes;
     if (s.line_bytes > 0 && !dram_) dram_ = std::make_unique<Dram>(dram);
-    reach = std::max({reach, uint64_t(s.capacity), uint64_t(s.next_depth), blocks[j].fifo_depth});
+    // (the raster's own FIFO holds triangles: no term looks back through it)
+    reach = std::max({reach, uint64_t(s.capacity), uint64_t(s.next_depth), j > 0 ? blocks[j].fifo_depth : 0});
     blocks_.push_back(s);
   }
   uint64_t chunk = kSpanMax;  // K: at most every span block's FIFO depth
   for (size_t j = 1; j < blocks.size(); ++j) chunk = std::min<uint64_t>(chunk, blocks[j].fifo_depth);
   chunk_ = int(std::max<uint64_t>(chunk, 1));
-  // Windows of a few thousand pixels: sliding them (a copy of `reach` pixels) is rare.
+  // Windows of twice the reach and at least a few thousand pixels: a slide copies `reach`
+  // pixels at most once every `reach` pixels swept, mostly far less often.
   reach_ = int64_t(reach);
-  window_ = reach_ + std::max<int64_t>(16 * reach_, 2048) + kSpanMax;
+  window_ = reach_ + std::max<int64_t>(reach_, 2048) + kSpanMax;
   base_ = -reach_;  // pixel 0 after `reach` pixels "handed on and started before cycle 0"
   windows_.assign((blocks_.size() * 2 + 1) * size_t(window_), -1);
   for (size_t j = 0; j < blocks_.size(); ++j) {
@@ -249,11 +251,13 @@ void PixelLine::span_chunk(size_t j, int first, int last) {
   if constexpr (kUniform) {
     const uint32_t each = b.work.each;
     int i = first;
-    if (first == 0 && last > 0) pixel(i++, each + b.work.lead);
+    if (first == 0 && last > 0) {  // the packet's first pixel: its lead too (Work::at)
+      const uint32_t lead_w = std::min<uint32_t>(each + b.work.lead, 65535);
+      pixel(i++, lead_w);
+      busy = uint64_t(std::max<int64_t>(ii * int64_t(lead_w), 1) - std::max<int64_t>(ii * int64_t(each), 1));
+    }
     for (; i < last; ++i) pixel(i, each);
-    busy = uint64_t(std::max<int64_t>(ii * int64_t(each), 1)) * uint64_t(last - first);
-    if (first == 0 && last > 0)
-      busy += uint64_t(std::max<int64_t>(ii * int64_t(each + b.work.lead), 1) - std::max<int64_t>(ii * int64_t(each), 1));
+    busy += uint64_t(std::max<int64_t>(ii * int64_t(each), 1)) * uint64_t(last - first);
   } else {
     for (int i = first; i < last; ++i) pixel(i, b.w[i]);
   }
@@ -281,7 +285,7 @@ void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before, const std::ve
       b.w = b.work.per_pixel;
     } else {
       if (b.uniform[1] != b.work.each) std::fill(std::begin(b.uniform), std::end(b.uniform), uint16_t(b.work.each));
-      b.uniform[0] = uint16_t(b.work.each + b.work.lead);
+      b.uniform[0] = uint16_t(b.work.at(0));
       b.w = b.uniform;
     }
   }

@@ -64,9 +64,9 @@ class VcdText {
     char b[24];
     text_.append(b, size_t(std::to_chars(b, b + sizeof b, n).ptr - b));
   }
-  void binary(uint32_t v) {  // "b101"
+  void binary(uint64_t v) {  // "b101"
     text_ += 'b';
-    int top = 31;
+    int top = 63;
     while (top > 0 && !(v >> top & 1)) --top;
     for (int k = top; k >= 0; --k) text_ += char('0' + (v >> k & 1));
   }
@@ -104,9 +104,9 @@ void Tracer::write_vcd(core::OutputSet& outputs, const std::string& path) {
   vcd << "$version shadetlm " << core::kVersion << " $end\n$timescale 1 ps $end\n$scope module shadetlm $end\n"
       << "$var wire 1 " << vcd_id(0) << " end_of_trace $end\n"
       // The time in cycles, the model's own unit (the axis is in ps: a cycle is the period).
-      << "$var wire 32 " << vcd_id(1) << " cycle [31:0] $end\n";
+      << "$var wire 64 " << vcd_id(1) << " cycle [63:0] $end\n";
   auto write_cycle = [&](uint64_t cycle) {
-    vcd.binary(uint32_t(cycle));
+    vcd.binary(cycle);
     vcd << " " << vcd_id(1) << "\n";
   };
   for (size_t p = 0; p < info_.size(); ++p) {

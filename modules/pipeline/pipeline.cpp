@@ -391,7 +391,7 @@ void write_gtkw(core::OutputSet& outputs, const std::string& path, const std::st
     // dump runs 10 % past the traced span: a window past the dump's end resets the start).
     const double zoom = -std::log2(std::max(1.0, (to_ps - from_ps) * 1.05 / 4.3));
     out << "*" << std::fixed << zoom << " -1\n";
-    out << "@24\nshadetlm.cycle[31:0]\n";  // the time in cycles, first
+    out << "@24\nshadetlm.cycle[63:0]\n";  // the time in cycles, first
     for (const auto& p : probes) {
       out << "@800200\n-" << p.block << "\n";  // a group per block
       for (size_t k = 0; k < p.names.size(); ++k) {
