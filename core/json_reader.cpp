@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "shadetlm/core/nearest.hpp"
+
 namespace shadetlm::core {
 
 namespace {
@@ -105,7 +107,9 @@ std::string JsonReader::choice(const std::string& key, std::optional<std::string
     if (a == s) return s;
   std::string list;
   for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-  fail(key, "unknown value \"" + printable(s) + "\" (one of: " + list + ")");
+  const std::string near = nearest_name(s, allowed);
+  fail(key, "unknown value \"" + printable(s) + "\"" + (near.empty() ? "" : ": did you mean \"" + near + "\"?") +
+                " (one of: " + list + ")");
 }
 
 std::vector<double> JsonReader::numbers(const std::string& key, size_t count) {
@@ -203,8 +207,10 @@ void JsonReader::finish() const {
     if (!read_.count(it.key())) {
       std::string known;
       for (const auto& k : read_) known += (known.empty() ? "" : ", ") + k;
+      const std::string near = nearest_name(it.key(), std::vector<std::string>(read_.begin(), read_.end()));
       throw InputError(file_, field(printable(it.key())),
-                       "unknown key" + (known.empty() ? std::string() : " (known here: " + known + ")"));
+                       "unknown key" + (near.empty() ? std::string() : ": did you mean " + near + "?") +
+                           (known.empty() ? std::string() : " (known here: " + known + ")"));
     }
 }
 

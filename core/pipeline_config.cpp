@@ -55,7 +55,7 @@ void check_value(const SettingSpec& spec, const json& value, const std::string& 
       std::string list;
       for (const auto& ch : spec.choices) list += (list.empty() ? "" : ", ") + ch;
       const std::string near = nearest_name(value.get<std::string>(), spec.choices);
-      throw InputError(file, field, "unknown value \"" + value.get<std::string>() + "\"" +
+      throw InputError(file, field, "unknown value \"" + printable(value.get<std::string>()) + "\"" +
                                         (near.empty() ? "" : ": did you mean \"" + near + "\"?") + " (one of: " + list + ")");
     }
     if (spec.number_format && !(spec.key != "number_format" && value == "default")) try {

@@ -152,6 +152,14 @@ TEST_CASE("a mistyped setting or value is answered with the nearest and not a li
   CHECK_THAT(what, Catch::Contains("did you mean pipeline.lighting.fifo_depth?"));
   std::tie(field, what) = error_of(minimal(), {"pipeline.zzzzzzzz=1"});
   CHECK_THAT(what, !Catch::Contains("did you mean") && Catch::Contains("docs/configuration.md"));
+  std::tie(field, what) = error_of(minimal(), {"objects.0.shape=spere"});  // a scene's own choice field
+  CHECK(field == "objects.0.shape");
+  CHECK_THAT(what, Catch::Contains("did you mean \"sphere\"?"));
+  json doc = minimal();
+  doc["camera"]["fovy"] = 30;  // a scene's own key
+  std::tie(field, what) = error_of(doc);
+  CHECK(field == "camera.fovy");
+  CHECK_THAT(what, Catch::Contains("did you mean fov_y?"));
   std::tie(field, what) = error_of(minimal(), {"pipeline.normalize.mode=exakt"});
   CHECK(field == "pipeline.normalize.mode");
   CHECK_THAT(what, Catch::Contains("did you mean \"exact\"?"));
