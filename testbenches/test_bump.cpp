@@ -6,7 +6,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "shadetlm/core/bump_map.hpp"
 #include "shadetlm/core/compare.hpp"
@@ -358,28 +357,6 @@ TEST_CASE("normal maps stored at 8, 10, 16 bits: the error grows as the bits fal
   CHECK(std::abs(psnr[1] - psnr[0]) < 0.1);
 }
 
-TEST_CASE("an 8-bit normal map file is read as (N + 1) / 2 and decoded as 2x - 1", "[bump]") {
-  // A 2×2 PNG whose texels hold the bytes of N = (0, 0, 1), (1, 0, 0), (0, -1, 0), (0.6, 0, 0.8).
-  const unsigned char bytes[4][3] = {{128, 128, 255}, {255, 128, 128}, {128, 0, 128}, {204, 128, 230}};
-  std::vector<unsigned char> rgb(bytes[0], bytes[0] + 12);
-  const auto dir = std::filesystem::temp_directory_path() / ("shadetlm-nm-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  {
-    std::ofstream((dir / "nm.png").string(), std::ios::binary) << core::encode_png(2, 2, rgb);
-  }
-  const std::string text = R"({"format": 1, "camera": {"position": [0, 0, 3], "target": [0, 0, 0], "resolution": [8, 8]},
-    "textures": {"nm": {"type": "image", "file": "nm.png", "colorspace": "srgb"}},
-    "materials": {"m": {"path": "bump-tangent", "normal_map": "nm"}},
-    "objects": [{"shape": "sphere", "material": "m"}]})";
-  const core::Scene scene = core::load_scene_text(text, "nm.json", dir.string());
-  const auto m = std::find_if(scene.materials.begin(), scene.materials.end(), [](const auto& x) { return x.name == "m"; });
-  REQUIRE(m != scene.materials.end());
-  const core::Texture& map = scene.textures[size_t(m->normal_map)];
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 3; ++k) CHECK(map.texels[size_t(i)][k] == Approx(bytes[i][k] / 255.0 * 2 - 1).margin(1e-6));
-  std::filesystem::remove_all(dir);
-}
-
 // A 2×2 normal map PNG (N + 1) / 2 of the given bytes, in a fresh folder; a scene over it.
 namespace {
 std::filesystem::path normal_map_png(const std::string& name, const unsigned char (&bytes)[4][3]) {
@@ -402,6 +379,23 @@ const core::Texture& normal_map_of(const core::Scene& scene) {
   return scene.textures[size_t(scene.materials[size_t(scene.objects[0].material)].normal_map)];
 }
 }  // namespace
+
+TEST_CASE("an 8-bit normal map file is read as (N + 1) / 2 and decoded as 2x - 1", "[bump]") {
+  // A 2×2 PNG whose texels hold the bytes of N = (0, 0, 1), (1, 0, 0), (0, -1, 0), (0.6, 0, 0.8).
+  const unsigned char bytes[4][3] = {{128, 128, 255}, {255, 128, 128}, {128, 0, 128}, {204, 128, 230}};
+  const auto dir = normal_map_png("nm-8bit", bytes);
+  const std::string text = R"({"format": 1, "camera": {"position": [0, 0, 3], "target": [0, 0, 0], "resolution": [8, 8]},
+    "textures": {"nm": {"type": "image", "file": "nm.png", "colorspace": "srgb"}},
+    "materials": {"m": {"path": "bump-tangent", "normal_map": "nm"}},
+    "objects": [{"shape": "sphere", "material": "m"}]})";
+  const core::Scene scene = core::load_scene_text(text, "nm.json", dir.string());
+  const auto m = std::find_if(scene.materials.begin(), scene.materials.end(), [](const auto& x) { return x.name == "m"; });
+  REQUIRE(m != scene.materials.end());
+  const core::Texture& map = scene.textures[size_t(m->normal_map)];
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) CHECK(map.texels[size_t(i)][k] == Approx(bytes[i][k] / 255.0 * 2 - 1).margin(1e-6));
+  std::filesystem::remove_all(dir);
+}
 
 TEST_CASE("normal_map_channels: a map's green up or down, an object-space map's axes, read as declared", "[bump]") {
   // N = (0, 0, 1), (1, 0, 0), (0, -1, 0), (0.6, 0, 0.8) as stored bytes.

@@ -120,8 +120,9 @@ struct Work {
   const uint16_t* lines = nullptr;
   uint32_t lead = 0;
   uint32_t lines_at(int i) const { return lines ? lines[i] : 0; }
-  // (at most 65535 a pixel, as a per-pixel array holds it)
-  uint32_t at(int i) const { return per_pixel ? per_pixel[i] : i == 0 ? std::min<uint32_t>(each + lead, 65535) : each; }
+  // A uniform block's first pixel: its lead too (at most 65535, as a per-pixel array holds).
+  uint32_t first() const { return std::min<uint32_t>(each + lead, 65535); }
+  uint32_t at(int i) const { return per_pixel ? per_pixel[i] : i == 0 ? first() : each; }
 };
 
 class FramebufferKernel;

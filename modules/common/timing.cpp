@@ -251,8 +251,8 @@ void PixelLine::span_chunk(size_t j, int first, int last) {
   if constexpr (kUniform) {
     const uint32_t each = b.work.each;
     int i = first;
-    if (first == 0 && last > 0) {  // the packet's first pixel: its lead too (Work::at)
-      const uint32_t lead_w = std::min<uint32_t>(each + b.work.lead, 65535);
+    if (first == 0 && last > 0) {  // the packet's first pixel: its lead too
+      const uint32_t lead_w = b.work.first();
       pixel(i++, lead_w);
       busy = uint64_t(std::max<int64_t>(ii * int64_t(lead_w), 1) - std::max<int64_t>(ii * int64_t(each), 1));
     }
@@ -285,7 +285,7 @@ void PixelLine::sweep(const SpanPacket& p, uint64_t hidden_before, const std::ve
       b.w = b.work.per_pixel;
     } else {
       if (b.uniform[1] != b.work.each) std::fill(std::begin(b.uniform), std::end(b.uniform), uint16_t(b.work.each));
-      b.uniform[0] = uint16_t(b.work.at(0));
+      b.uniform[0] = uint16_t(b.work.first());
       b.w = b.uniform;
     }
   }
