@@ -13,7 +13,7 @@
 
 #include <systemc>
 
-#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/numeric/number.hpp"
 
 using namespace shadetlm;  // core::, modules::, reference::
 

@@ -343,7 +343,7 @@ def db(x):
     return fig(x) if not math.isfinite(x) else "%.1f" % x
 
 
-# The heat map's ramp, as core/compare.cpp (add_comparison_images) draws it: these colours at
+# The heat map's ramp, as src/shadetlm/core/compare.cpp (add_comparison_images) draws it: these colours at
 # 1e-6, 1e-5, …, 1e-1, linear in log10 of the error between them; red above 1e-1 (and for
 # non-finite differences); black below 1e-6 unless the pixel is over the colour tolerance.
 RAMP = ["#000080", "#0000ff", "#00ffff", "#00ff00", "#ffff00", "#ff0000"]

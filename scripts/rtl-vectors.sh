@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs the RTL normalize unit on test vectors (docs/rtl.md, "Test vectors"): builds
-# rtl/normalize/normalize_tb.sv with Verilator (--binary) for the format and mode the
+# src/shadetlm/rtl/normalize/normalize_tb.sv with Verilator (--binary) for the format and mode the
 # vectors' header names — the mode's latency and II the model's defaults — and checks
 # every output word against the vectors.
 # Usage: scripts/rtl-vectors.sh FOLDER   (FOLDER holds normalize.in.hex and .out.hex,
@@ -23,7 +23,7 @@ if [[ ! $about =~ ^format\ fixed:([0-9]+)\.([0-9]+),\ mode\ ([a-z0-9-]+)$ ]]; th
 fi
 ibits=${BASH_REMATCH[1]} fbits=${BASH_REMATCH[2]} mode=${BASH_REMATCH[3]}
 # mode: index latency II, as the build has them
-read -r -a params < <(awk -v m="$mode" '$1 == m { print $2, $3, $4 }' "$root/rtl/normalize/modes.txt")
+read -r -a params < <(awk -v m="$mode" '$1 == m { print $2, $3, $4 }' "$root/src/shadetlm/rtl/normalize/modes.txt")
 ((${#params[@]} == 3)) || { echo "rtl-vectors.sh: $in: unknown mode $mode" >&2; exit 2; }
 pixels=$(grep -vc '^//' "$in" || true)
 if ((pixels < 1 || pixels > 1048576)) || [[ $pixels != "$(grep -vc '^//' "$out" || true)" ]]; then
@@ -32,7 +32,7 @@ if ((pixels < 1 || pixels > 1048576)) || [[ $pixels != "$(grep -vc '^//' "$out" 
 fi
 # The testbench's build, kept per mode and format (RTL_TB_DIR: elsewhere than out/).
 obj=${RTL_TB_DIR:-$root/out/rtl-tb}/$mode.fixed-$ibits.$fbits  # (no colon: make reads the path)
-rtl=$root/rtl/normalize
+rtl=$root/src/shadetlm/rtl/normalize
 sources=("$rtl/normalize_tb.sv" "$rtl/normalize_unit.sv" "$rtl/normalize_datapath.sv" "$rtl/fx_isqrt.sv")
 stale=0
 for s in "${sources[@]}"; do [[ $s -nt $obj/Vnormalize_tb ]] && stale=1; done

@@ -398,7 +398,7 @@ def main():
     # killed (subprocess.run does) and the scratch folder and the .progress file go too.
     signal.signal(signal.SIGTERM, lambda number, frame: sys.exit(128 + number))
     # Scratch frames on tmpfs where there is one: every output is synced to disk when
-    # written (core/output.hpp), a wait that shards running side by side would share.
+    # written (src/shadetlm/core/output.hpp), a wait that shards running side by side would share.
     scratch = "/dev/shm" if os.access("/dev/shm", os.W_OK) else None
     tmp = tempfile.mkdtemp(prefix="sweep-", dir=scratch)
     try:

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The RTL normalize unit's silicon cost (docs/rtl.md, "Silicon cost"), every figure
-# printed here: Yosys synthesizes rtl/normalize to generic cells for each mode at the
+# printed here: Yosys synthesizes src/shadetlm/rtl/normalize to generic cells for each mode at the
 # widths the format report names (docs/numerical-stability.md: fixed:1.12, the fewest
 # bits that keep the long-spans scene within 1/255; fixed:3.16, tiny normals within
 # 2^-12), and prints
@@ -39,7 +39,7 @@ for f in $formats; do
 done
 out=$root/out/synth
 mkdir -p "$out"
-rtl=$root/rtl/normalize
+rtl=$root/src/shadetlm/rtl/normalize
 # mode index latency II, as the build has them
 mapfile -t modes < <(grep '^[a-z]' "$rtl/modes.txt" | tr -s ' ')
 
@@ -101,7 +101,7 @@ def render(mode, fmt):
 print("| mode | format | datapath cells | datapath transistors | unit flip-flops | latency / II |"
       " model ops a pixel | normal error, max (long-spans) |")
 print("|---|---|---:|---:|---:|---|---:|---:|")
-timing = {w[0]: f"{w[2]} / {w[3]}" for w in (l.split() for l in open(f"{root}/rtl/normalize/modes.txt")) if w[0][0].isalpha()}
+timing = {w[0]: f"{w[2]} / {w[3]}" for w in (l.split() for l in open(f"{root}/src/shadetlm/rtl/normalize/modes.txt")) if w[0][0].isalpha()}
 for fmt in formats:
     for mode in modes:
         cells, transistors, _ = stat(f"{out}/{mode}.{fmt}.normalize_datapath.log")

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fault injection against the output contract (core/output.hpp): a full disk, signals,
+# Fault injection against the output contract (src/shadetlm/core/output.hpp): a full disk, signals,
 # SIGKILL, an allocation limit, special files as inputs and outputs that collide. Every
 # output appears whole or not at all, never beside a temporary "<path>.tmp.<host>.<pid>", and the
 # outputs of one run appear together.
@@ -137,7 +137,7 @@ done
 full_disk disk-parallax-bench-json 1000 pb.json \
   "$bin" parallax-bench "$parallax" --rays 2 --elevations 60 --json pb.json
 
-# --- 3. Signals at known points of a run. SHADETLM_PAUSE_AT (core/output.hpp) makes the
+# --- 3. Signals at known points of a run. SHADETLM_PAUSE_AT (src/shadetlm/core/output.hpp) makes the
 # run stop itself (SIGSTOP) on reaching a point; the test waits for that stop, sends its
 # signal and lets the run go on. No delay is guessed, so a faster, slower or busier
 # machine changes nothing. The run's folder holds an older run's outputs first: a run

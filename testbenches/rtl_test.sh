@@ -187,7 +187,7 @@ else ok "control: a changed vector is found ($(grep -c 'pixel' "$tmp/tb") report
 # 5. Synthesis (scripts/synth.sh makes the table): Yosys reads the RTL and maps it to
 # generic cells without latches; the unit keeps its latency's pixels in flip-flops.
 if command -v yosys >/dev/null; then
-  r=$src/rtl/normalize
+  r=$src/src/shadetlm/rtl/normalize
   yosys -q -l "$tmp/dp.log" -p "read_verilog -sv $r/normalize_datapath.sv $r/fx_isqrt.sv;
     chparam -set IBITS 1 -set FBITS 12 -set MODE 2 normalize_datapath; synth -top normalize_datapath -flatten;
     stat -tech cmos" >/dev/null 2>&1

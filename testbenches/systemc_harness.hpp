@@ -14,7 +14,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "shadetlm/modules/common/block.hpp"
+#include "shadetlm/tlm/stage.hpp"
 
 using namespace shadetlm;  // core::, modules::, reference::
 
@@ -65,7 +65,7 @@ struct Sink : sc_core::sc_module {
 
 // Runs packets through Stage<Kernel>: driver → block → sink. Optionally, the delay each
 // packet is sent with, and a check of the delay it reaches the sink with (a block passes
-// it on unchanged: the pixels' times come from the pipeline's PixelLine).
+// it on unchanged: the pixels' times come from the pipeline's MainPassTiming).
 template <class Kernel>
 uint64_t run_stage(Kernel& kernel, std::function<void(std::function<void(modules::SpanPacket&)>)> produce,
                    std::function<void(const modules::SpanPacket&)> check,

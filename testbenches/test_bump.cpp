@@ -10,7 +10,7 @@
 #include "shadetlm/core/bump_map.hpp"
 #include "shadetlm/core/compare.hpp"
 #include "shadetlm/core/frame.hpp"
-#include "shadetlm/modules/common/sampler.hpp"
+#include "shadetlm/sampling/sampler.hpp"
 #include "shadetlm/modules/pipeline/pipeline.hpp"
 #include "shadetlm/reference/reference.hpp"
 #include "systemc_harness.hpp"

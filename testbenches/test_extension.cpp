@@ -1,7 +1,7 @@
 // The extension point (docs/development.md, "Adding a block"): a block declared here,
 // outside modules/, added to the standard pipeline by one call, elaborated by both
 // engines, with its own setting, statistics and timing.
-#include "shadetlm/modules/common/declaration.hpp"
+#include "shadetlm/tlm/block.hpp"
 #include "shadetlm/modules/pipeline/pipeline.hpp"
 #include "test_util.hpp"
 

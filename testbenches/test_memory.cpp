@@ -9,9 +9,9 @@
 #include <random>
 #include <set>
 
-#include "shadetlm/modules/common/timing.hpp"
-#include "shadetlm/modules/memory/cache.hpp"
-#include "shadetlm/modules/memory/dram.hpp"
+#include "shadetlm/timing/main_pass.hpp"
+#include "shadetlm/memory/cache.hpp"
+#include "shadetlm/memory/dram.hpp"
 #include "shadetlm/modules/pipeline/pipeline.hpp"
 #include "test_util.hpp"
 

@@ -1,4 +1,4 @@
-// The number types of the datapaths (modules/common/number.hpp) and the per-block
+// The number types of the datapaths (numeric/number.hpp) and the per-block
 // formats of the pipeline (docs/numerical-stability.md): float16 rounding checked against
 // the compiler's own binary16, fixed point's grid, rounding and saturation, the events
 // counted, and the formats at work in whole frames.
@@ -8,7 +8,7 @@
 #include <set>
 
 #include "shadetlm/core/compare.hpp"
-#include "shadetlm/modules/common/number.hpp"
+#include "shadetlm/numeric/number.hpp"
 #include "shadetlm/modules/parallax/parallax_kernel.hpp"
 #include "shadetlm/modules/pipeline/pipeline.hpp"
 #include "test_util.hpp"

@@ -1,17 +1,17 @@
-// The fast timing model (modules/common/timing.hpp) on an example small enough to work
+// The fast timing model (timing/main_pass.hpp) on an example small enough to work
 // by hand — the worked example of docs/pipeline.md. (The clocked reference checks it on
 // whole frames: testbenches/timing_check_test.sh.)
 #include <catch2/catch.hpp>
 
 #include <random>
 
-#include "shadetlm/modules/common/timing.hpp"
+#include "shadetlm/timing/main_pass.hpp"
 
 using namespace shadetlm;
 
-TEST_CASE("PixelLine: four pixels through a raster and two blocks, worked by hand", "[timing]") {
+TEST_CASE("MainPassTiming: four pixels through a raster and two blocks, worked by hand", "[timing]") {
   // raster: L 1, II 1 (C = 2); A: L 2, II 1, FIFO 1 (C = 3); B: L 1, II 2, FIFO 1 (C = 1).
-  modules::PixelLine line({{1, 1, 4}, {2, 1, 1}, {1, 2, 1}});
+  modules::MainPassTiming line({{1, 1, 4}, {2, 1, 1}, {1, 2, 1}});
   line.keep_times = true;
   line.set_work(1, {nullptr, 1});
   line.set_work(2, {nullptr, 1});
@@ -48,14 +48,14 @@ TEST_CASE("PixelLine: four pixels through a raster and two blocks, worked by han
 // work folded, its FIFO's oldest pixel no longer followed once the peak is the depth).
 // Both must count the same on any configuration: random ones here, with seeds printed;
 // and a uniform block's work (Work::lead included) the same as that work spelled per pixel.
-TEST_CASE("PixelLine: the inspected sweep and the plain one count the same", "[timing]") {
+TEST_CASE("MainPassTiming: the inspected sweep and the plain one count the same", "[timing]") {
   for (uint32_t seed = 1; seed <= 300; ++seed) {
     std::mt19937 rng(seed);
     auto pick = [&](int lo, int hi) { return int(std::uniform_int_distribution<int>(lo, hi)(rng)); };
     std::vector<modules::Timing> blocks(size_t(pick(2, 6)));
     for (auto& t : blocks) t = {uint64_t(pick(1, 40)), uint64_t(pick(1, 6)), uint64_t(pick(1, 16))};
     // spelled: the same work, a uniform block's given per pixel (its lead on the first)
-    modules::PixelLine inspected(blocks), plain(blocks), spelled(blocks);
+    modules::MainPassTiming inspected(blocks), plain(blocks), spelled(blocks);
     inspected.keep_times = true;
     std::vector<std::vector<uint16_t>> work(blocks.size(), std::vector<uint16_t>(modules::kSpanMax));
     std::vector<std::vector<uint16_t>> spelled_work = work;

@@ -64,7 +64,7 @@ check "bump, all blocks, slow end" 1 "$src/golden/bump-knot/scene.json" --set pi
 # A fast setup into a raster FIFO of one triangle, the forward-difference seed per packet.
 check "setup against the raster's FIFO" 1 "$src/golden/demo/scene.json" --set pipeline.setup.ii=1 \
   --set pipeline.setup.latency=1 --set pipeline.raster.fifo_depth=1 --set pipeline.normalize.mode=forward-difference
-# Long packets, timed in chunks of the shallowest FIFO (modules/common/timing.hpp): a
+# Long packets, timed in chunks of the shallowest FIFO (src/shadetlm/timing/main_pass.hpp): a
 # steady stream, and one that back-pressure shapes.
 check "sphere at 320x240, long packets" 0 "$src/golden/sphere/scene.json" --set 'camera.resolution=[320,240]'
 check "long packets behind a slow lighting" 1 "$src/golden/point-light/scene.json" --set 'camera.resolution=[320,240]' \
@@ -181,7 +181,7 @@ sed '1d' "$tmp/good.log" >"$tmp/bad.log";                               refuse n
 { head -n 2 "$tmp/good.log"; echo "set a=1"; sed -n '3,$p' "$tmp/good.log"; } >"$tmp/bad.log"
                                                                       refuse set-late "line 3: a set record after"
 
-# The walk comes from the scene, not from the log (timing_reference/scene_walk.hpp): a log
+# The walk comes from the scene, not from the log (src/shadetlm/timing_reference/scene_walk.hpp): a log
 # whose walk or statistics disagree with the scene's is DIFFERENT even where its times
 # are consistent with themselves. Each of these passed the judge that read the walk
 # from the log.

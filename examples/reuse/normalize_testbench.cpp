@@ -8,7 +8,7 @@
 #include <tlm_utils/simple_initiator_socket.h>
 #include <tlm_utils/simple_target_socket.h>
 
-#include "shadetlm/modules/common/block.hpp"
+#include "shadetlm/tlm/stage.hpp"
 #include "shadetlm/modules/normalize/normalize_kernel.hpp"
 
 struct Driver : sc_core::sc_module {
