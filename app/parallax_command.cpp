@@ -428,7 +428,7 @@ Command add_parallax_bench_command(CLI::App& app) {
             const core::ParallaxSettings base = mat.parallax;
             const std::vector<Method> methods = methods_to_compare(base, opt->margins);
             nlohmann::json out = bench_header(*opt, scene, mat, height);
-            const int64_t cell_cycles = modules::parallax_cell_cycles(settings_of(scene));
+            const int64_t cell_cycles = modules::parallax_cell_cycles(core::read<modules::PipelineSettings>(settings_of(scene), "").unit);
             out["cell_cycles"] = cell_cycles;
             const std::vector<modules::ParallaxMaps> maps = build_maps(methods, height, scene.file, out);
             std::vector<int> box_gap_iterations;  // per ray, for the refined map's per-ray gate

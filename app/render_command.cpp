@@ -17,6 +17,7 @@
 #include "app/progress.hpp"
 #include "shadetlm/core/compare.hpp"
 #include "shadetlm/core/input_error.hpp"
+#include "shadetlm/modules/normalize/normalize_settings.hpp"
 #include "shadetlm/modules/pipeline/pipeline.hpp"
 #include "shadetlm/reference/reference.hpp"
 
@@ -156,7 +157,7 @@ void check_before_simulation(const RenderOptions& opt, const core::Scene& scene,
   // Test vectors come from the kernels, and are kept in memory (about 100 bytes a pixel).
   if (!inspect.vectors.empty()) {
     const core::Settings settings = scene.pipeline.resolve(modules::standard_pipeline().all_settings());
-    if (settings.string("normalize.impl") == "rtl")
+    if (modules::read_settings<modules::NormalizeSettings>(settings).impl == modules::NormalizeSettings::Impl::Rtl)
       throw core::InputError("--vectors", inspect.vectors,
                              "test vectors are the kernel's words: render with pipeline.normalize.impl=kernel");
     const uint64_t pixels = inspect.region_given ? uint64_t(std::max<int64_t>(across, 0) * std::max<int64_t>(down, 0))

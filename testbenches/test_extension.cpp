@@ -13,6 +13,7 @@ namespace {
 // the pixels it tinted.
 class TintKernel {
  public:
+  static constexpr unsigned optional = modules::Optional::details;  // (tlm/kernel_parts.hpp)
   explicit TintKernel(double gain) : gain_(float(gain)) {}
   void process(modules::SpanPacket& p) {
     for (int c = 0; c < 3; ++c)
@@ -34,11 +35,22 @@ class TintKernel {
   uint64_t tinted_ = 0;
 };
 
+struct TintSettings {
+  static constexpr const char* block = "tint";
+  double gain = 1.0;
+  template <class F>
+  void fields(F& f) {
+    f(gain, "gain", {0, 10}, "colour gain");
+  }
+};
+
 modules::BlockDecl tint_block() {
-  return {"tint", {3, 1}, false, {{"gain", 1.0, {}, 0, 10, "colour gain"}}, {},
-          [](const modules::BlockContext& ctx) -> std::unique_ptr<modules::Block> {
-            return std::make_unique<modules::SpanBlock<TintKernel>>(ctx.number("gain"));
-          }};
+  modules::BlockDecl d = modules::declare<TintSettings>();
+  d.basics.timing = {3, 1};
+  d.make = [](const modules::BlockContext& ctx) -> std::unique_ptr<modules::Block> {
+    return std::make_unique<modules::SpanBlock<TintKernel>>(float(ctx.read<TintSettings>().gain));
+  };
+  return d;
 }
 
 modules::PipelineDecl with_tint() {

@@ -186,8 +186,16 @@ TEST_CASE("number format names: parsed, printed, and bad ones refused naming the
             .find("pipeline.number_format") != std::string::npos);
   const core::Scene s =
       core::load_scene_text(scene, "ok.json", ".", {"pipeline.number_format=float16", "pipeline.lighting.format=fixed:2.14"});
-  CHECK(test::settings(s).format("normalize").name() == "float16");  // default: number_format
-  CHECK(test::settings(s).format("lighting").name() == "fixed:2.14");
+  const core::Settings settings = test::settings(s);
+  const auto pipeline = core::read<modules::PipelineSettings>(settings, "");
+  auto format_of = [&](const std::string& block) {  // as the block's BlockContext resolves it
+    modules::BlockBasics formatted;
+    formatted.formatted = true;
+    const modules::BlockBasics basics = core::read(settings, block + ".", formatted);
+    return modules::BlockContext{s, settings, block, pipeline, basics}.format().name();
+  };
+  CHECK(format_of("normalize") == "float16");  // default: number_format
+  CHECK(format_of("lighting") == "fixed:2.14");
 }
 
 TEST_CASE("a wide fixed-point format runs the same algorithms as float32, a narrow one shows its error", "[numbers]") {

@@ -112,11 +112,6 @@ const std::string& Settings::string(const std::string& key) const {
   return strings_.at(key);
 }
 
-NumberFormat Settings::format(const std::string& block) const {
-  const std::string& name = string(block + ".format");
-  return NumberFormat::parse(name == "default" ? string("number_format") : name);
-}
-
 json Settings::resolved() const {
   json out = json::object();
   for (const auto& [k, v] : values_) out[k] = v;

@@ -30,8 +30,6 @@ class Settings {
   int integer(const std::string& key) const;
   const std::string& string(const std::string& key) const;
   bool boolean(const std::string& key) const;
-  // A block's number format: `<block>.format`, or number_format where that is "default".
-  NumberFormat format(const std::string& block) const;
   bool has(const std::string& key) const { return values_.count(key) > 0; }
 
   // Every setting with its resolved value, as a flat JSON object.

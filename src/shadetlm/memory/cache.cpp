@@ -9,12 +9,6 @@ const std::vector<std::string>& layout_names() {
   return names;
 }
 
-Layout parse_layout(const std::string& name) {
-  for (size_t i = 0; i < layout_names().size(); ++i)
-    if (layout_names()[i] == name) return Layout(i);
-  throw std::invalid_argument("unknown layout '" + name + "'");
-}
-
 namespace {
 
 bool power_of_two(uint64_t n) { return n > 0 && (n & (n - 1)) == 0; }

@@ -22,7 +22,6 @@ namespace shadetlm::modules {
 //   morton  Z-order: the bits of x and y interleaved, on the power-of-two square around the array
 enum class Layout { Linear, Tiled, Morton };
 const std::vector<std::string>& layout_names();  // in the order of Layout
-Layout parse_layout(const std::string& name);
 
 struct Surface {
   uint64_t base = 0;  // address of element (0, 0), line-aligned

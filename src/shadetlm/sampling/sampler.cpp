@@ -11,13 +11,6 @@ const std::vector<std::string>& filter_names() {
   return names;
 }
 
-Filter parse_filter(const std::string& name) {
-  const auto& names = filter_names();
-  for (size_t i = 0; i < names.size(); ++i)
-    if (names[i] == name) return Filter(i);
-  throw std::invalid_argument("unknown filter " + name);
-}
-
 namespace {
 
 // Texel coordinates (s, r) of (u, v) on a level of W × H texels, with the wrap mode

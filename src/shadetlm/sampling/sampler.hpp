@@ -35,8 +35,7 @@ namespace shadetlm::modules {
 
 enum class Filter { Nearest, Bilinear, Trilinear, Anisotropic, Ewa };
 // The filters' names (pipeline.<block>.filter), in the order of Filter.
-const std::vector<std::string>& filter_names();
-Filter parse_filter(const std::string& name);
+const std::vector<std::string>& filter_names();  // in the order of Filter
 
 // The filter a texture unit applies (pipeline.<block>.filter and .probes), and its
 // cache under the DRAM model (none: ideal memory).

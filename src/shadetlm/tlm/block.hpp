@@ -15,25 +15,39 @@
 
 #include "shadetlm/core/pipeline_config.hpp"
 #include "shadetlm/core/scene.hpp"
+#include "shadetlm/core/setting_fields.hpp"
 #include "shadetlm/tlm/stage.hpp"
 #include "shadetlm/tlm/packet.hpp"
 #include "shadetlm/stats/report.hpp"
 #include "shadetlm/memory/cache.hpp"
+#include "shadetlm/tlm/settings.hpp"
 
 namespace shadetlm::modules {
 
-// What a block is built from: the scene and every resolved setting. Reading its own
-// settings needs no prefix (`ctx.string("mode")` is `<block>.mode`).
+// The settings struct S of block S::block, read from resolved settings.
+template <class S>
+S read_settings(const core::Settings& settings) {
+  return core::read<S>(settings, std::string(S::block) + ".");
+}
+
+// What a block is built from: the scene and every resolved setting, typed: the
+// pipeline's own, the block's basics, and its own settings struct as ctx.read<S>()
+// (S::block names the block whose settings it holds; core/setting_fields.hpp).
 struct BlockContext {
   const core::Scene& scene;
-  const core::Settings& settings;
+  const core::Settings& settings;  // every resolved value, by key (what read<S>() reads)
   const std::string& name;
+  const PipelineSettings& pipeline;
+  const BlockBasics& basics;
 
-  const std::string& string(const std::string& key) const { return settings.string(name + "." + key); }
-  int integer(const std::string& key) const { return settings.integer(name + "." + key); }
-  double number(const std::string& key) const { return settings.number(name + "." + key); }
-  bool boolean(const std::string& key) const { return settings.boolean(name + "." + key); }
-  core::NumberFormat format() const { return settings.format(name); }
+  template <class S>
+  S read() const {
+    return read_settings<S>(settings);
+  }
+  // Its datapath's number format: its own, or the pipeline's where that is "default".
+  core::NumberFormat format() const {
+    return core::NumberFormat::parse(basics.format.name == "default" ? pipeline.number_format.name : basics.format.name);
+  }
 };
 
 class Block;
@@ -86,38 +100,47 @@ inline void SpanChain::operator()(SpanPacket& p) {
   pixels += uint64_t(p.count);
 }
 
+// A block's declaration, its fields set by name (modules/normalize/normalize_block.cpp):
+//   BlockDecl d = declare<NormalizeSettings>();  // its name and its own settings' table
+//   d.basics.timing = {1, 1};                     // the defaults of latency and ii
+//   d.make = [](const BlockContext& ctx) { … ctx.read<NormalizeSettings>() … };
 struct BlockDecl {
-  std::string name;                         // of its folder, settings, statistics, module
-  Timing timing;                            // defaults of <name>.latency, .ii and .fifo_depth
-  bool formatted = false;                   // has a <name>.format (a datapath in a number format)
-  std::vector<core::SettingSpec> settings;  // its own, keys without "<name>."
+  std::string name;  // of its folder, settings, statistics, module
+  // What it has (an input FIFO, a cache, a number format) and the defaults of its
+  // <name>.latency, .ii and .fifo_depth (tlm/settings.hpp).
+  BlockBasics basics;
+  std::vector<core::SettingSpec> settings;         // its own, keys without "<name>." (specs_of its struct)
   std::function<bool(const core::Scene&)> needed;  // empty: always elaborated
   // Builds the block, e.g. std::make_unique<SpanBlock<K>>(kernel arguments…): the
   // kernel is built in place (kernels may point into themselves).
   std::function<std::unique_ptr<Block>(const BlockContext&)> make;
-  // Its input FIFO (<name>.fifo_depth): of pixels, of triangles (the raster), or none
-  // (setup, the source; a frame pass).
-  enum class Fifo { None, Pixels, Triangles } fifo = Fifo::Pixels;
   // The arithmetic units on its critical path for its settings (a mode): their latency
   // is added to <name>.latency, and its II is at least theirs. Empty: none.
   std::function<Timing(const BlockContext&)> units = nullptr;
-  // A memory client (docs/memory.md): under pipeline.memory.model = dram it reads (or
-  // writes) through a cache of its own, <name>.cache.{size,line,ways,layout}, and may
-  // hold <name>.miss_queue pixels waiting for memory.
-  bool memory = false;
   // Its kernel writes test vectors (`render --vectors`, trace/test_vectors.hpp).
   bool vectors = false;
 };
+
+// The declaration of the block whose own settings are the struct S: its name S::block
+// and its settings' table from S's fields and defaults.
+template <class S>
+BlockDecl declare() {
+  BlockDecl d;
+  d.name = S::block;
+  d.settings = core::specs_of(S{});
+  return d;
+}
+// A block with no settings of its own.
+inline BlockDecl declare(const std::string& name) {
+  BlockDecl d;
+  d.name = name;
+  return d;
+}
 
 // A memory client's cache under the DRAM model; none under ideal memory. Throws
 // core::InputError naming the scene and the setting if it is not a cache.
 std::optional<CacheConfig> cache_of(const BlockContext& ctx);
 
-// An arithmetic unit's latency and II (pipeline.unit.<name>.latency and .ii, docs/
-// configuration.md "Arithmetic units").
-inline Timing unit(const core::Settings& s, const std::string& name) {
-  return {uint64_t(s.integer("unit." + name + ".latency")), uint64_t(s.integer("unit." + name + ".ii")), 0};
-}
 // Units one after another: latencies add, the slowest II paces them.
 inline Timing operator+(Timing a, Timing b) { return {a.latency + b.latency, std::max(a.ii, b.ii), 0}; }
 inline Timing operator*(uint64_t n, Timing t) { return {n * t.latency, n > 0 ? t.ii : 1, 0}; }
@@ -137,23 +160,9 @@ class KernelBlock : public Block {
   Ops ops() const override { return kernel.ops(); }
 };
 
-// The span kernels' optional reports, found by their signatures.
-template <class K, class = void> struct has_ranges : std::false_type {};
-template <class K> struct has_ranges<K, std::void_t<decltype(std::declval<const K&>().ranges())>> : std::true_type {};
-template <class K, class = void> struct has_numbers : std::false_type {};
-template <class K> struct has_numbers<K, std::void_t<decltype(std::declval<const K&>().numbers())>> : std::true_type {};
-template <class K, class = void> struct has_details : std::false_type {};
-template <class K> struct has_details<K, std::void_t<decltype(std::declval<const K&>().details())>> : std::true_type {};
-template <class K, class = void> struct has_memory : std::false_type {};
-template <class K> struct has_memory<K, std::void_t<decltype(std::declval<const K&>().memory())>> : std::true_type {};
-template <class K, class = void> struct has_precompute : std::false_type {};
-template <class K>
-struct has_precompute<K, std::void_t<decltype(std::declval<const K&>().precompute_seconds())>> : std::true_type {};
-
 // A span block (Stage<K> in SystemC): K has process, bypass, work, ops, trace_names,
-// trace and set_capture (modules/README.md), and may have ranges(), numbers(),
-// details() (JSON), precompute_seconds(), memory() and end_pass(PassEnd&), which are reported
-// or called where present.
+// trace and set_capture (modules/README.md), and the optional parts it names
+// (tlm/kernel_parts.hpp), which are reported or called.
 template <class K>
 class SpanBlock : public KernelBlock<K, Stage<K>> {
  public:

@@ -20,6 +20,7 @@
 #include <tlm_utils/simple_target_socket.h>
 
 #include "shadetlm/numeric/ops.hpp"
+#include "shadetlm/tlm/kernel_parts.hpp"
 #include "shadetlm/tlm/packet.hpp"
 #include "shadetlm/stats/report.hpp"
 #include "shadetlm/trace/timeline.hpp"
@@ -139,11 +140,6 @@ class BlockInfo : public TimedObserver {
   }
 };
 
-// Kernels with test vectors have vector_layout(), vector_in() and vector_out().
-template <class K, class = void> struct has_vectors : std::false_type {};
-template <class K>
-struct has_vectors<K, std::void_t<decltype(std::declval<const K&>().vector_layout())>> : std::true_type {};
-
 // Whether a transaction is the end of a pass (PassEnd) rather than a packet: a
 // platform's driver that leaves the command unset (TLM_IGNORE_COMMAND) still sends
 // packets, as long as its data length is not that of a PassEnd.
@@ -169,6 +165,8 @@ class PacketTarget : public tlm::tlm_fw_transport_if<> {
 // of each pixel into the main pass's MainPassTiming.
 template <class Kernel>
 class Stage : public sc_core::sc_module, public BlockInfo, public PacketTarget {
+  static_assert(optional_parts_checked<Kernel>());
+
  public:
   tlm::tlm_target_socket<32> in;
   tlm_utils::simple_initiator_socket_optional<Stage> out;  // unbound at the last block

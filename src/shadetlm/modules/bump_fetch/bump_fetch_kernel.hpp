@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "shadetlm/numeric/number.hpp"
+#include "shadetlm/tlm/kernel_parts.hpp"
 #include "shadetlm/tlm/packet.hpp"
 #include "shadetlm/numeric/range.hpp"
 #include "shadetlm/sampling/sampler.hpp"
@@ -30,6 +31,7 @@ namespace shadetlm::modules {
 
 class BumpFetchKernel {
  public:
+  static constexpr unsigned optional = Optional::ranges | Optional::numbers | Optional::memory | Optional::precompute;  // (tlm/kernel_parts.hpp)
   struct Options : FilterSetting {
     bool renormalize_mips = true;
     int stored_bits = 0;  // 0: float texels; 8, 10, 16: unsigned normalized, (N + 1) / 2

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "shadetlm/numeric/number.hpp"
+#include "shadetlm/tlm/kernel_parts.hpp"
 #include "shadetlm/tlm/packet.hpp"
 #include "shadetlm/numeric/range.hpp"
 
@@ -19,6 +20,7 @@ namespace shadetlm::modules {
 
 class BumpPerturbKernel {
  public:
+  static constexpr unsigned optional = Optional::ranges | Optional::numbers;  // (tlm/kernel_parts.hpp)
   // The interpolators, the products and the sums are of `format` (pipeline.bump_perturb.format).
   explicit BumpPerturbKernel(bool perspective, core::NumberFormat format = {})
       : perspective_(perspective), numbers_(format) {}

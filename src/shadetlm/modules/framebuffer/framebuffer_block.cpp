@@ -23,12 +23,14 @@ bool has_texture_object(const core::Scene& scene) {
 }  // namespace
 
 BlockDecl framebuffer_block() {
-  BlockDecl d{"framebuffer", {2, 1}, false, {}, {}, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
-                // Texture-object materials are resolved by a later pass over the frame: keep
-                // what it needs (the visible triangle and specular term per pixel).
-                return std::make_unique<FramebufferBlock>(ctx.scene, has_texture_object(ctx.scene), cache_of(ctx));
-              }};
-  d.memory = true;  // writes colour through a cache (docs/memory.md)
+  BlockDecl d = declare("framebuffer");
+  d.basics.timing = {2, 1};
+  d.basics.memory = true;  // writes colour through a cache (docs/memory.md)
+  d.make = [](const BlockContext& ctx) -> std::unique_ptr<Block> {
+    // Texture-object materials are resolved by a later pass over the frame: keep what it
+    // needs (the visible triangle and specular term per pixel).
+    return std::make_unique<FramebufferBlock>(ctx.scene, has_texture_object(ctx.scene), cache_of(ctx));
+  };
   return d;
 }
 

@@ -11,6 +11,7 @@
 
 #include "shadetlm/core/frame.hpp"
 #include "shadetlm/numeric/number.hpp"
+#include "shadetlm/tlm/kernel_parts.hpp"
 #include "shadetlm/tlm/packet.hpp"
 #include "shadetlm/memory/cache.hpp"
 
@@ -18,6 +19,7 @@ namespace shadetlm::modules {
 
 class FramebufferKernel {
  public:
+  static constexpr unsigned optional = Optional::memory | Optional::end_pass;  // (tlm/kernel_parts.hpp)
   // deferred: keep, per pixel, the visible scene triangle and the specular term of
   // texture-object materials, for texel_project's second pass.
   // cache: the colour buffer's cache under the DRAM model (docs/memory.md; none: ideal

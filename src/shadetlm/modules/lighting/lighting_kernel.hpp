@@ -13,12 +13,14 @@
 #include <vector>
 
 #include "shadetlm/numeric/number.hpp"
+#include "shadetlm/tlm/kernel_parts.hpp"
 #include "shadetlm/tlm/packet.hpp"
 
 namespace shadetlm::modules {
 
 class LightingKernel {
  public:
+  static constexpr unsigned optional = Optional::numbers;  // (tlm/kernel_parts.hpp)
   // Its datapaths are of `format` (pipeline.lighting.format); the colour leaves as float32.
   explicit LightingKernel(const core::Scene& scene, core::NumberFormat format = {});
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "shadetlm/numeric/number.hpp"
+#include "shadetlm/tlm/kernel_parts.hpp"
 #include "shadetlm/tlm/packet.hpp"
 #include "shadetlm/numeric/range.hpp"
 
@@ -24,6 +25,7 @@ namespace shadetlm::modules {
 
 class NormalInterpKernel {
  public:
+  static constexpr unsigned optional = Optional::ranges | Optional::numbers;  // (tlm/kernel_parts.hpp)
   // reseed: 0 walks the whole triangle from its seed (the paper's); −1 takes every row
   // start from the plane; N > 0 also every N pixels along the row (normal_interp.reseed).
   // The walker's adders and registers are of `format` (pipeline.normal_interp.format):

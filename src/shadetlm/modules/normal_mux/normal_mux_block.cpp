@@ -5,9 +5,11 @@
 namespace shadetlm::modules {
 
 BlockDecl normal_mux_block() {
-  return {"normal_mux", {1, 1}, false, {}, NormalMuxKernel::needed, [](const BlockContext&) -> std::unique_ptr<Block> {
-            return std::make_unique<SpanBlock<NormalMuxKernel>>();
-          }};
+  BlockDecl d = declare("normal_mux");
+  d.basics.timing = {1, 1};
+  d.needed = NormalMuxKernel::needed;
+  d.make = [](const BlockContext&) -> std::unique_ptr<Block> { return std::make_unique<SpanBlock<NormalMuxKernel>>(); };
+  return d;
 }
 
 }  // namespace shadetlm::modules

@@ -8,12 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "shadetlm/tlm/kernel_parts.hpp"
 #include "shadetlm/tlm/packet.hpp"
 
 namespace shadetlm::modules {
 
 class NormalMuxKernel {
  public:
+  static constexpr unsigned optional = Optional::none;  // (tlm/kernel_parts.hpp)
   static bool needed(const core::Scene& scene);
 
   // Packets whose normal is the interpolated one take the mux's other input: modelled as

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "shadetlm/numeric/number.hpp"
+#include "shadetlm/tlm/kernel_parts.hpp"
 #include "shadetlm/tlm/packet.hpp"
 #include "shadetlm/trace/test_vectors.hpp"
 
@@ -197,6 +198,7 @@ Ops normalize_ops_per_pixel_direct_rsqrt(bool rsqrt_unit = false);
 
 class NormalizeKernel {
  public:
+  static constexpr unsigned optional = Optional::numbers | Optional::details | Optional::vectors;  // (tlm/kernel_parts.hpp)
   // The radicand and inverse square root datapaths are of `format`
   // (pipeline.normalize.format).
   explicit NormalizeKernel(NormalizeMode mode, core::NumberFormat format = {}, RadicandSeed seed = RadicandSeed::Packet)

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "shadetlm/numeric/number.hpp"
+#include "shadetlm/tlm/kernel_parts.hpp"
 #include "shadetlm/tlm/packet.hpp"
 #include "shadetlm/stats/report.hpp"
 #include "shadetlm/modules/normalize/normalize_kernel.hpp"
@@ -34,6 +35,7 @@ class NormalizeRtlPins;  // the verilated unit and the signals on its pins
 
 class NormalizeRtlKernel {
  public:
+  static constexpr unsigned optional = Optional::numbers | Optional::details;  // (tlm/kernel_parts.hpp)
   // Throws core::InputError naming `scene_file` and the setting when this build has no
   // RTL, or its RTL was built for another format or timing than `format` and `timing`.
   NormalizeRtlKernel(NormalizeMode mode, core::NumberFormat format, Timing timing, const std::string& scene_file);

@@ -32,8 +32,10 @@
 
 #include "shadetlm/core/parallax_map.hpp"
 #include "shadetlm/numeric/number.hpp"
+#include "shadetlm/tlm/kernel_parts.hpp"
 #include "shadetlm/tlm/packet.hpp"
 #include "shadetlm/memory/cache.hpp"
+#include "shadetlm/tlm/settings.hpp"
 
 namespace shadetlm::core {
 class Settings;
@@ -74,7 +76,7 @@ inline int64_t parallax_cycles(const ParallaxTrace& r, int64_t cell_cycles) {
 }
 // The cycles of an exact cell test under the pipeline's settings: 18 mul, 2 div, a square
 // root and four texels on one divider and one square-root unit (the divider twice).
-int64_t parallax_cell_cycles(const core::Settings& settings);
+int64_t parallax_cell_cycles(const PipelineSettings::Units& units);
 // The tracer's map reads under the DRAM model: where one material's maps lie, and the
 // lines a pixel touches (its line buffer), read through the cache at the pixel's end.
 class MapReads {
@@ -117,6 +119,7 @@ ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps
 
 class ParallaxKernel {
  public:
+  static constexpr unsigned optional = Optional::numbers | Optional::details | Optional::memory | Optional::precompute;  // (tlm/kernel_parts.hpp)
   // The tracer runs in `format` (pipeline.parallax.format).
   // `cell_cycles`: the cycles of an exact cell test (one a step or read).
   // `cache`: its cache under the DRAM model (none: ideal memory).

@@ -23,41 +23,7 @@ BlockDecl setup_block(), raster_block(), parallax_block(), normal_interp_block()
 
 PipelineDecl standard_pipeline() {
   PipelineDecl d;
-  // Read by the SystemC pipeline (`shadetlm render`); the golden model reads none of
-  // them. docs/configuration.md documents each one (a test checks that it does).
-  d.settings = {
-      {"clock_mhz", 500.0, {}, 1, 100000, "clock of every block, for simulated time"},
-      {"number_format", "float32", {}, 0, 0,
-       "number format of every datapath: float32, float16 or fixed:I.F (docs/numerical-stability.md)", true},
-      {"elaborate", "needed", {"needed", "all"}, 0, 0,
-       "elaborate the blocks some material needs, or every block (to measure what skipping saves)"},
-      // Memory (docs/memory.md): ideal (every access hits, no bandwidth limit) or the
-      // memory clients' caches in front of one shared DRAM.
-      {"memory.model", "ideal", {"ideal", "dram"}, 0, 0,
-       "ideal memory, or caches and a shared DRAM (docs/memory.md)"},
-      {"memory.latency", 200, {}, 1, 100000, "cycles from a DRAM request's last byte to its data in the block"},
-      {"memory.bytes_per_cycle", 32, {}, 1, 4096, "the DRAM's bandwidth, shared by its clients"},
-  };
-  // The arithmetic units (docs/configuration.md, "Arithmetic units"): single-precision
-  // latency and reciprocal throughput of Intel Skylake's ADDSS, MULSS, DIVSS, SQRTSS and
-  // RSQRTSS (Agner Fog, Instruction tables, 2022), the throughput rounded up to whole
-  // cycles.
-  const struct { const char* name; int latency, ii; const char* what; } units[] = {
-      {"add", 4, 1, "floating-point adder"},
-      {"mul", 4, 1, "floating-point multiplier"},
-      {"div", 11, 3, "divider"},
-      {"sqrt", 12, 3, "square root"},
-      {"rsqrt_table", 4, 1, "reciprocal square root estimate (table)"},
-      // No x86 instruction: assumed a table and a polynomial step, as the estimate above.
-      {"log2", 4, 1, "base-2 logarithm (the specular power)"},
-      {"exp2", 4, 1, "base-2 exponential (the specular power)"},
-  };
-  for (const auto& u : units) {
-    d.settings.push_back({std::string("unit.") + u.name + ".latency", u.latency, {}, 1, 10000,
-                          std::string("latency of the ") + u.what});
-    d.settings.push_back({std::string("unit.") + u.name + ".ii", u.ii, {}, 1, 10000,
-                          std::string("cycles between operations of the ") + u.what});
-  }
+  d.settings = core::specs_of(PipelineSettings{});  // (tlm/settings.hpp)
   // The passes, in order. A pre-pass (a depth pre-pass, say) would go before "main".
   d.passes = {
       {"main",
@@ -82,30 +48,33 @@ void check_shape(const std::vector<Pipeline::Elaborated>& blocks) {
 }  // namespace
 
 Pipeline::Pipeline(const core::Scene& scene, const PipelineDecl& declaration)
-    : scene_(scene), settings_(scene.pipeline.resolve(declaration.all_settings())) {
+    : scene_(scene),
+      settings_(scene.pipeline.resolve(declaration.all_settings())),
+      pipeline_(core::read<PipelineSettings>(settings_, "")) {
   if (scene.lights.size() > size_t(kMaxLights))
     throw core::InputError(scene.file, "lights",
                            "the pipeline's lighting datapath holds at most " + std::to_string(kMaxLights) +
                                " lights, the scene has " + std::to_string(scene.lights.size()));
-  clock_mhz_ = settings_.number("clock_mhz");
   // Only the blocks some material needs — or all of them (pipeline.elaborate = all), to
   // measure what the skipping saves.
-  const bool all = settings_.string("elaborate") == "all";
+  const bool all = pipeline_.elaborate == PipelineSettings::Elaborate::All;
   for (const auto& pass : declaration.passes)
     for (const auto& b : pass.blocks) {
       if (!all && b.needed && !b.needed(scene)) continue;
-      Timing timing{uint64_t(settings_.integer(b.name + ".latency")), uint64_t(settings_.integer(b.name + ".ii")), 0};
-      if (b.fifo != BlockDecl::Fifo::None) timing.fifo_depth = uint64_t(settings_.integer(b.name + ".fifo_depth"));
-      if (b.memory && b.fifo != BlockDecl::Fifo::None && settings_.string("memory.model") == "dram") {
-        timing.line_bytes = uint64_t(settings_.integer(b.name + ".cache.line"));
-        timing.miss_queue = uint64_t(settings_.integer(b.name + ".miss_queue"));
+      const BlockBasics basics = core::read(settings_, b.name + ".", b.basics);
+      const BlockContext ctx{scene, settings_, b.name, pipeline_, basics};
+      Timing timing = basics.timing;
+      if (basics.fifo == BlockBasics::Fifo::None) timing.fifo_depth = 0;
+      if (basics.memory && basics.fifo != BlockBasics::Fifo::None && pipeline_.memory == PipelineSettings::Memory::Dram) {
+        timing.line_bytes = basics.cache.line;
+        timing.miss_queue = basics.miss_queue;
       }
       if (b.units) {
-        const Timing units = b.units(BlockContext{scene, settings_, b.name});
+        const Timing units = b.units(ctx);
         timing.latency += units.latency;
         timing.ii = std::max(timing.ii, units.ii);
       }
-      blocks_.push_back({b.name, timing, b.make(BlockContext{scene, settings_, b.name})});
+      blocks_.push_back({b.name, timing, b.make(ctx)});
     }
   check_shape(blocks_);
 }

@@ -43,18 +43,16 @@ class Pipeline {
   };
   std::vector<Elaborated>& blocks() { return blocks_; }
   const core::Settings& settings() const { return settings_; }
+  const PipelineSettings& pipeline_settings() const { return pipeline_; }
   // The DRAM's timing under pipeline.memory.model = dram (none: ideal memory).
-  std::optional<DramTiming> dram() const {
-    if (settings_.string("memory.model") == "ideal") return std::nullopt;
-    return DramTiming{uint64_t(settings_.integer("memory.latency")), uint64_t(settings_.integer("memory.bytes_per_cycle"))};
-  }
+  std::optional<DramTiming> dram() const { return pipeline_.dram_timing(); }
   const core::Scene& scene() const { return scene_; }
-  double clock_mhz() const { return clock_mhz_; }
+  double clock_mhz() const { return pipeline_.clock_mhz; }
 
  private:
   const core::Scene& scene_;
   core::Settings settings_;
-  double clock_mhz_;
+  PipelineSettings pipeline_;
   std::vector<Elaborated> blocks_;
 };
 

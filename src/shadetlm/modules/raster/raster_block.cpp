@@ -24,11 +24,13 @@ class RasterBlock : public KernelBlock<RasterKernel, Raster> {
 }  // namespace
 
 BlockDecl raster_block() {
-  BlockDecl d{"raster", {4, 1, 4}, false, {}, {}, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
-                return std::make_unique<RasterBlock>(ctx.scene.camera.width, ctx.scene.camera.height, cache_of(ctx));
-              }};
-  d.fifo = BlockDecl::Fifo::Triangles;
-  d.memory = true;  // the depth buffer through a cache (docs/memory.md)
+  BlockDecl d = declare("raster");
+  d.basics.timing = {4, 1, 4};
+  d.basics.fifo = BlockBasics::Fifo::Triangles;
+  d.basics.memory = true;  // the depth buffer through a cache (docs/memory.md)
+  d.make = [](const BlockContext& ctx) -> std::unique_ptr<Block> {
+    return std::make_unique<RasterBlock>(ctx.scene.camera.width, ctx.scene.camera.height, cache_of(ctx));
+  };
   return d;
 }
 

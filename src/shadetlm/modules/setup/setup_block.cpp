@@ -2,6 +2,8 @@
 // main pass.
 #include "shadetlm/tlm/block.hpp"
 #include "shadetlm/modules/setup/setup.hpp"
+#include "shadetlm/modules/normal_interp/normal_interp_settings.hpp"
+#include "shadetlm/modules/vector_interp/vector_interp_settings.hpp"
 
 namespace shadetlm::modules {
 
@@ -21,23 +23,33 @@ class SetupBlock : public KernelBlock<SetupKernel, Setup> {
 };
 }  // namespace
 
-BlockDecl setup_block() {
+// Its own setting, pipeline.setup.<key>.
+struct SetupSettings {
+  static constexpr const char* block = "setup";
   // A triangle it drops costs the cycles to find out: snapping and the sign of the screen
   // determinant (2 mul, 1 add), which it computes first, before any plane.
-  std::vector<core::SettingSpec> settings = {
-      {"reject_cycles", 2, {}, 1, 1000000,
-       "cycles setup's unit spends on a triangle it culls or clips away (docs/pipeline.md, Timing)"}};
-  BlockDecl d{"setup", {16, 8}, false, settings, {}, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
-                // It sets up the planes the interpolators read: N or N/w as normal_interp
-                // steps, L and V for affine bump vectors and H's planes as vector_interp reads them.
-                auto block = std::make_unique<SetupBlock>(ctx.scene,
-                                                          ctx.settings.string("normal_interp.mode") == "perspective",
-                                                          ctx.settings.string("vector_interp.bump_vectors") == "affine",
-                                                          ctx.settings.string("vector_interp.h") == "interpolated");
-                block->kernel.reject_cycles = uint64_t(ctx.integer("reject_cycles"));
-                return block;
-              }};
-  d.fifo = BlockDecl::Fifo::None;  // the source
+  uint64_t reject_cycles = 2;
+  template <class F>
+  void fields(F& f) {
+    f(reject_cycles, "reject_cycles", {1, 1000000},
+      "cycles setup's unit spends on a triangle it culls or clips away (docs/pipeline.md, Timing)");
+  }
+};
+
+BlockDecl setup_block() {
+  BlockDecl d = declare<SetupSettings>();
+  d.basics.timing = {16, 8};
+  d.basics.fifo = BlockBasics::Fifo::None;  // the source
+  d.make = [](const BlockContext& ctx) -> std::unique_ptr<Block> {
+    // It sets up the planes the interpolators read: N or N/w as normal_interp steps, L
+    // and V for affine bump vectors and H's planes as vector_interp reads them.
+    const NormalInterpSettings normals = ctx.read<NormalInterpSettings>();
+    const VectorInterpSettings vectors = ctx.read<VectorInterpSettings>();
+    auto block = std::make_unique<SetupBlock>(ctx.scene, normals.perspective(), vectors.affine_bump_vectors(),
+                                              vectors.interpolate_h());
+    block->kernel.reject_cycles = ctx.read<SetupSettings>().reject_cycles;
+    return block;
+  };
   return d;
 }
 

@@ -25,27 +25,35 @@ class TexelProjectBlock : public KernelBlock<TexelProjectKernel, TexelProject> {
 };
 }  // namespace
 
+// Its own settings, pipeline.texel_project.<key>.
+struct TexelProjectSettings {
+  static constexpr const char* block = "texel_project";
+  int units = 4;
+  int accumulator_bits = 32;
+  TexelProjectKernel::Lod lod = TexelProjectKernel::Lod::MostMagnified;
+
+  template <class F>
+  void fields(F& f) {
+    f(units, "units", {1, 64}, "parallel splat units of texel_project");
+    f(accumulator_bits, "accumulator_bits", {8, 64}, "bits of each of a pixel's four accumulated numbers (DRAM model)");
+    f(lod, "lod", {"most-magnified", "constant-z"},
+      "LOD rule: the spacing at the visible polygon's most magnified vertex, or the paper's constant z'");
+  }
+};
+
 BlockDecl texel_project_block() {
-  BlockDecl d{"texel_project", {16, 1}, true,
-              {{"units", 4, {}, 1, 64, "parallel splat units of texel_project"},
-               {"accumulator_bits", 32, {}, 8, 64, "bits of each of a pixel's four accumulated numbers (DRAM model)"},
-               {"lod", "most-magnified", {"most-magnified", "constant-z"}, 0, 0,
-                "LOD rule: the spacing at the visible polygon's most magnified vertex, or the paper's constant z'"}},
-              TexelProjectKernel::needed, [](const BlockContext& ctx) -> std::unique_ptr<Block> {
-                std::optional<TexelProjectKernel::Memory> memory;
-                if (const auto cache = cache_of(ctx)) {
-                  const core::Settings& s = ctx.settings;
-                  memory = TexelProjectKernel::Memory{
-                      *cache,
-                      DramTiming{uint64_t(s.integer("memory.latency")), uint64_t(s.integer("memory.bytes_per_cycle"))},
-                      ctx.integer("accumulator_bits")};
-                }
-                const auto lod = ctx.string("lod") == "constant-z" ? TexelProjectKernel::Lod::ConstantZ
-                                                                   : TexelProjectKernel::Lod::MostMagnified;
-                return std::make_unique<TexelProjectBlock>(ctx.scene, ctx.integer("units"), ctx.format(), memory, lod);
-              }};
-  d.fifo = BlockDecl::Fifo::None;  // a pass of its own over the frame
-  d.memory = true;                 // texel reads and splats through caches (docs/memory.md)
+  BlockDecl d = declare<TexelProjectSettings>();
+  d.basics.timing = {16, 1};
+  d.basics.formatted = true;
+  d.basics.fifo = BlockBasics::Fifo::None;  // a pass of its own over the frame
+  d.basics.memory = true;                   // texel reads and splats through caches (docs/memory.md)
+  d.needed = TexelProjectKernel::needed;
+  d.make = [](const BlockContext& ctx) -> std::unique_ptr<Block> {
+    const TexelProjectSettings s = ctx.read<TexelProjectSettings>();
+    std::optional<TexelProjectKernel::Memory> memory;
+    if (const auto cache = cache_of(ctx)) memory = TexelProjectKernel::Memory{*cache, ctx.pipeline.dram, s.accumulator_bits};
+    return std::make_unique<TexelProjectBlock>(ctx.scene, s.units, ctx.format(), memory, s.lod);
+  };
   return d;
 }
 

@@ -4,19 +4,32 @@
 
 namespace shadetlm::modules {
 
+// Its own settings, pipeline.texture_fetch.<key>.
+struct TextureFetchSettings {
+  static constexpr const char* block = "texture_fetch";
+  Filter filter = Filter::Trilinear;
+  int probes = 4;
+
+  template <class F>
+  void fields(F& f) {
+    f(filter, "filter", filter_names(), "screen-space filter of texture-screen materials");
+    f(probes, "probes", {1, 16}, "anisotropic filter: trilinear probes along the footprint's major axis");
+  }
+};
+
 BlockDecl texture_fetch_block() {
-  BlockDecl d{"texture_fetch", {8, 1}, false,
-          {{"filter", "trilinear", filter_names(), 0, 0, "screen-space filter of texture-screen materials"},
-           {"probes", 4, {}, 1, 16, "anisotropic filter: trilinear probes along the footprint's major axis"}},
-          TextureFetchKernel::needed,
-          [](const BlockContext& ctx) -> std::unique_ptr<Block> {
-            TextureFetchKernel::Options o;
-            o.filter = parse_filter(ctx.string("filter"));
-            o.probes = ctx.integer("probes");
-            o.cache = cache_of(ctx);
-            return std::make_unique<SpanBlock<TextureFetchKernel>>(ctx.scene, o);
-          }};
-  d.memory = true;  // reads its maps through a cache (docs/memory.md)
+  BlockDecl d = declare<TextureFetchSettings>();
+  d.basics.timing = {8, 1};
+  d.basics.memory = true;  // reads its maps through a cache (docs/memory.md)
+  d.needed = TextureFetchKernel::needed;
+  d.make = [](const BlockContext& ctx) -> std::unique_ptr<Block> {
+    const TextureFetchSettings s = ctx.read<TextureFetchSettings>();
+    TextureFetchKernel::Options o;
+    o.filter = s.filter;
+    o.probes = s.probes;
+    o.cache = cache_of(ctx);
+    return std::make_unique<SpanBlock<TextureFetchKernel>>(ctx.scene, o);
+  };
   return d;
 }
 

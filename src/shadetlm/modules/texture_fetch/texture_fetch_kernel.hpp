@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "shadetlm/numeric/number.hpp"
+#include "shadetlm/tlm/kernel_parts.hpp"
 #include "shadetlm/tlm/packet.hpp"
 #include "shadetlm/numeric/range.hpp"
 #include "shadetlm/sampling/sampler.hpp"
@@ -19,6 +20,7 @@ namespace shadetlm::modules {
 
 class TextureFetchKernel {
  public:
+  static constexpr unsigned optional = Optional::numbers | Optional::details | Optional::memory;  // (tlm/kernel_parts.hpp)
   using Options = FilterSetting;
   TextureFetchKernel(const core::Scene& scene, const Options& options);
   static bool needed(const core::Scene& scene);

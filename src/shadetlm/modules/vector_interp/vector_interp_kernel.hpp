@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "shadetlm/numeric/number.hpp"
+#include "shadetlm/tlm/kernel_parts.hpp"
 #include "shadetlm/tlm/packet.hpp"
 #include "shadetlm/numeric/range.hpp"
 
@@ -23,6 +24,7 @@ namespace shadetlm::modules {
 
 class VectorInterpKernel {
  public:
+  static constexpr unsigned optional = Optional::ranges | Optional::numbers;  // (tlm/kernel_parts.hpp)
   // Its datapaths are of `format` (pipeline.vector_interp.format).
   VectorInterpKernel(const core::Scene& scene, const std::vector<int>& point_lights, bool affine_bump_vectors = false,
                      core::NumberFormat format = {}, bool interpolate_h = false);
