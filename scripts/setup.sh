@@ -18,6 +18,8 @@ packages=(
   python3             # report scripts
   verilator           # RTL in the loop (docs/rtl.md): the normalize unit verilated into SystemC
   yosys               # its synthesis to generic cells (scripts/synth.sh, the rtl test)
+  opensta             # its timing and power in standard cells (scripts/cells.py)
+  qflow-tech-osu018   # the OSU 0.18 um cell library (scripts/cells.py)
 )
 # Packages a script needs beyond these come as arguments: scripts/plot.sh gnuplot-nox;
 # scripts/test.sh and scripts/cluster-bench.sh slurm-wlm's daemons for a single-node
