@@ -5,15 +5,15 @@
 namespace shadetlm::modules {
 
 // Its own settings, pipeline.texture_fetch.<key>.
+// Its fields are the kernel's options (their defaults the kernel's), read as they are.
 struct TextureFetchSettings {
   static constexpr const char* block = "texture_fetch";
-  Filter filter = Filter::Trilinear;
-  int probes = 4;
+  TextureFetchKernel::Options options;
 
   template <class F>
   void fields(F& f) {
-    f(filter, "filter", filter_names(), "screen-space filter of texture-screen materials");
-    f(probes, "probes", {1, 16}, "anisotropic filter: trilinear probes along the footprint's major axis");
+    f(options.filter, "filter", filter_names(), "screen-space filter of texture-screen materials");
+    f(options.probes, "probes", {1, 16}, "anisotropic filter: trilinear probes along the footprint's major axis");
   }
 };
 
@@ -23,10 +23,7 @@ BlockDecl texture_fetch_block() {
   d.basics.memory = true;  // reads its maps through a cache (docs/memory.md)
   d.needed = TextureFetchKernel::needed;
   d.make = [](const BlockContext& ctx) -> std::unique_ptr<Block> {
-    const TextureFetchSettings s = ctx.read<TextureFetchSettings>();
-    TextureFetchKernel::Options o;
-    o.filter = s.filter;
-    o.probes = s.probes;
+    TextureFetchKernel::Options o = ctx.read<TextureFetchSettings>().options;
     o.cache = cache_of(ctx);
     return std::make_unique<SpanBlock<TextureFetchKernel>>(ctx.scene, o);
   };
