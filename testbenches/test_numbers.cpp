@@ -260,10 +260,11 @@ TEST_CASE("float16 lighting under a light past its range: counted, and no infini
 // Each kernel declares its operation counts (ops in the stats); here the float32
 // datapaths run on Counted<float> instead, which counts what the code does, and the two
 // are held together per block. Checked: the blocks whose datapath is written over the
-// number type. Not checked (their float32 code is not, or not all): bump_fetch and
-// texture_fetch (the texture unit's filter), texel_project (its per-triangle setup in
-// double), parallax (the exact cell test stays float32, and its tallies are by hand),
-// and setup, raster, framebuffer (no number format).
+// number type. The texture unit's filters (texture_fetch, bump_fetch) are held to their
+// declared counts in test_texturing. Not checked (their float32 code is not, or not
+// all): texel_project (its per-triangle setup in double), parallax (the exact cell test
+// stays float32, and its tallies are by hand), and setup, raster, framebuffer (no number
+// format).
 TEST_CASE("every formatted block's declared operation counts are what its number type counts", "[numbers][ops]") {
   struct Case {
     const char* scene;

@@ -4,12 +4,15 @@
 // hostile geometry.
 #include <cmath>
 #include <cstring>
+#include <random>
 #include <sstream>
 
+#include "shadetlm/core/bump_map.hpp"
 #include "shadetlm/core/compare.hpp"
 #include "shadetlm/modules/pipeline/pipeline.hpp"
 #include "shadetlm/modules/texel_project/texel_project_kernel.hpp"
 #include "shadetlm/reference/reference.hpp"
+#include "shadetlm/sampling/sampler.hpp"
 #include "systemc_harness.hpp"
 #include "test_util.hpp"
 
@@ -214,4 +217,75 @@ TEST_CASE("texturing paths: SystemC pipeline and plain loop give the same bits",
   // The second pass ends the frame, after everything of the first.
   CHECK(sc.frame_cycles == uint64_t(sc.blocks.back().last_cycle + 1));
   for (size_t i = 0; i + 1 < sc.blocks.size(); ++i) CHECK(sc.blocks[i].last_cycle < sc.blocks.back().last_cycle);
+}
+
+// The texture unit's declared operation counts (what bump_fetch and texture_fetch put in
+// the stats' ops) against what its code does, the filter run on Counted<float>: every
+// filter, both wraps, footprints from magnified through 16 : 1 to degenerate, per sample
+// and per span. The counted run's values are float32's, bit for bit.
+TEST_CASE("the texture unit's declared operation counts are what its code counts", "[texturing][ops]") {
+  using C = modules::Counted<float>;
+  core::ProceduralParams pp;
+  pp.size = {64, 32}, pp.color_a = {1, 0.5, 0.25};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> position(-2.0f, 3.0f), exponent(-5.0f, 0.5f), coin(0.0f, 1.0f);
+  // A derivative: 0 now and then, else ±10^e per pixel step (up to ~3 textures a pixel).
+  auto derivative = [&] { return coin(rng) < 0.1f ? 0.0f : (coin(rng) < 0.5f ? -1 : 1) * std::pow(10.0f, exponent(rng)); };
+  auto same_counts = [](const modules::Ops& declared, const modules::Ops& counted) {
+    return declared.add == counted.add && declared.mul == counted.mul && declared.div == counted.div &&
+           declared.sqrt == counted.sqrt && declared.rsqrt == counted.rsqrt && declared.lut == counted.lut;
+  };
+  auto diff = [](const modules::Ops& d, const modules::Ops& k) {
+    std::ostringstream s;
+    s << "declared-counted add " << int64_t(d.add - k.add) << " mul " << int64_t(d.mul - k.mul) << " div "
+      << int64_t(d.div - k.div) << " sqrt " << int64_t(d.sqrt - k.sqrt) << " lut " << int64_t(d.lut - k.lut);
+    return s.str();
+  };
+  for (core::Wrap wrap : {core::Wrap::Repeat, core::Wrap::Clamp}) {
+    core::Texture base = core::make_value_noise(pp);
+    base.wrap = wrap;
+    std::vector<core::Texture> levels = core::mip_levels(base, false);
+    modules::MipMap map;
+    map.levels.push_back(&base);
+    for (auto& l : levels) l.wrap = wrap, map.levels.push_back(&l);
+    for (int f = 0; f < int(modules::filter_names().size()); ++f) {
+      const auto filter = modules::Filter(f);
+      INFO("filter " << modules::filter_names()[size_t(f)] << (wrap == core::Wrap::Repeat ? " repeat" : " clamp"));
+      modules::Sampler counted(filter, 8), plain(filter, 8);
+      for (int i = 0; i < 3000; ++i) {
+        const float u = position(rng), v = position(rng);
+        const float d[4] = {derivative(), derivative(), derivative(), derivative()};
+        modules::Ops declared, plain_ops;
+        C::ops = {};
+        C out[3];
+        counted.sample_as<C>(map, u, v, d[0], d[1], d[2], d[3], out, declared);
+        float expected[3];
+        plain.sample(map, u, v, d[0], d[1], d[2], d[3], expected, plain_ops);
+        INFO("sample " << i << " uv " << u << ' ' << v << " d " << d[0] << ' ' << d[1] << ' ' << d[2] << ' ' << d[3]
+                       << ": " << diff(declared, C::ops));
+        REQUIRE(same_counts(declared, C::ops));
+        REQUIRE(declared == plain_ops);
+        for (int c = 0; c < 3; ++c) REQUIRE(std::memcmp(&out[c].v, &expected[c], sizeof(float)) == 0);
+      }
+      // A span of a perspective triangle: uv and its derivatives per pixel, the planes'
+      // seeds per span.
+      modules::TriangleSetup t;
+      t.x_ref = 3, t.y_ref = 5;
+      t.inv_w = {0.8f, 0.011f, -0.007f}, t.uv[0] = {0.3f, 0.02f, 0.004f}, t.uv[1] = {-0.2f, 0.003f, 0.03f};
+      modules::SpanPacket p;
+      p.tri = &t, p.y = 9, p.x0 = 6, p.count = 21;
+      for (int k = 0; k < p.count; ++k) p.w[k] = 1.0f / t.inv_w.at(p.x0 + k - t.x_ref, p.y - t.y_ref);
+      float out[3][modules::kSpanMax], expected[3][modules::kSpanMax];
+      uint16_t cycles[modules::kSpanMax];
+      modules::ValueRange range;
+      modules::Ops declared, plain_ops;
+      C::ops = {};
+      modules::sample_span<C>(t, p, map, counted, out, declared, range, cycles);
+      modules::sample_span(t, p, map, plain, expected, plain_ops, range, cycles);
+      INFO("span: " << diff(declared, C::ops));
+      CHECK(same_counts(declared, C::ops));
+      CHECK(declared == plain_ops);
+      for (int c = 0; c < 3; ++c) CHECK(std::memcmp(out[c], expected[c], sizeof(float) * size_t(p.count)) == 0);
+    }
+  }
 }

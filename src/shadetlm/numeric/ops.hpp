@@ -14,13 +14,13 @@ struct Ops {
   uint64_t add = 0, mul = 0, div = 0, sqrt = 0, rsqrt = 0, lut = 0, fetch = 0;
   uint64_t line = 0;  // memory lines read by the texture unit (a cost, not arithmetic)
 
-  Ops& operator+=(const Ops& o) {
+  constexpr Ops& operator+=(const Ops& o) {
     add += o.add; mul += o.mul; div += o.div; sqrt += o.sqrt; rsqrt += o.rsqrt; lut += o.lut;
     fetch += o.fetch; line += o.line;
     return *this;
   }
-  Ops operator+(const Ops& o) const { return Ops(*this) += o; }
-  Ops operator*(uint64_t n) const {
+  constexpr Ops operator+(const Ops& o) const { return Ops(*this) += o; }
+  constexpr Ops operator*(uint64_t n) const {
     return {add * n, mul * n, div * n, sqrt * n, rsqrt * n, lut * n, fetch * n, line * n};
   }
   bool operator==(const Ops& o) const {
@@ -76,6 +76,9 @@ struct Counted {
   friend bool operator==(Counted a, Counted b) { return a.v == b.v; }
   friend bool operator!=(Counted a, Counted b) { return a.v != b.v; }
   Counted& operator/=(Counted b) { return *this = *this / b; }
+  // The integer part, wiring: found by a template's unqualified floor(x) after
+  // `using std::floor` (core's height and volume reads, run counted by the tracer's check).
+  friend Counted floor(Counted a) { return std::floor(a.v); }
 };
 
 // The elementary functions of the datapaths, for plain floating types and Counted.
@@ -90,6 +93,11 @@ template <class T> Counted<T> rsqrt_op(Counted<T> x) { ++Counted<T>::ops.sqrt, +
 // The specular power is one table look-up in hardware (it is powf here).
 template <class T> Counted<T> pow_op(Counted<T> x, Counted<T> e) { ++Counted<T>::ops.lut; return std::pow(x.v, e.v); }
 template <class T> Counted<T> pow_op(Counted<T> x, float e) { ++Counted<T>::ops.lut; return std::pow(x.v, T(e)); }
+// The texture unit's LOD (log2) and EWA weight (exp): one table look-up each.
+template <class T> T log2_op(T x) { return std::log2(x); }
+template <class T> T exp_op(T x) { return std::exp(x); }
+template <class T> Counted<T> log2_op(Counted<T> x) { ++Counted<T>::ops.lut; return std::log2(x.v); }
+template <class T> Counted<T> exp_op(Counted<T> x) { ++Counted<T>::ops.lut; return std::exp(x.v); }
 
 // Adds operations done outside T (e.g. on the bits of a float) to T's tally.
 template <class T> void tally_counted(const Ops& o) { Counted<T>::ops += o; }

@@ -63,7 +63,13 @@ class Sampler {
   // The filtered first three channels at (u, v); d*dx and d*dy are the derivatives of
   // u and v per pixel step right and down. Adds its operations to `ops`.
   void sample(const MipMap& map, float u, float v, float dudx, float dvdx, float dudy, float dvdy, float out[3],
-              Ops& ops);
+              Ops& ops) {
+    sample_as<float>(map, u, v, dudx, dvdx, dudy, dvdy, out, ops);
+  }
+  // The same on T: float, or Counted<float>, which counts what the code does (the
+  // testbench holds the declared counts in `ops` to it).
+  template <class T>
+  void sample_as(const MipMap& map, T u, T v, T dudx, T dvdx, T dudy, T dvdy, T out[3], Ops& ops);
 
   // The texture unit's work so far, in cycles at II 1: it reads four texels a cycle, and
   // a pixel takes at least one cycle.
@@ -74,10 +80,13 @@ class Sampler {
   float last_lod() const { return lod_; }
 
  private:
-  void bilinear(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops);
-  void nearest(const core::Texture& t, int level, float u, float v, float out[3], Ops& ops);
-  void trilinear(const MipMap& map, float lod, float u, float v, float out[3], Ops& ops);
-  void ewa(const MipMap& map, float u, float v, float ax, float ay, float bx, float by, float out[3], Ops& ops);
+  template <class T> void bilinear(const core::Texture& t, int level, T u, T v, T out[3], Ops& ops);
+  template <class T> void nearest(const core::Texture& t, int level, T u, T v, T out[3], Ops& ops);
+  template <class T> void trilinear(const MipMap& map, T lod, T u, T v, T out[3], Ops& ops);
+  // du_major, dv_major: the derivatives along the footprint's major axis.
+  template <class T>
+  void anisotropic(const MipMap& map, T u, T v, T du_major, T dv_major, T major2, T minor2, T out[3], Ops& ops);
+  template <class T> void ewa(const MipMap& map, T u, T v, T ax, T ay, T bx, T by, T out[3], Ops& ops);
   void touch(int level, int x, int y);
   [[gnu::noinline]] void touch_memory(int level, int x, int y);  // the line of the unit's layout (DRAM model)
   [[gnu::noinline]] void read_lines();  // the pixel's lines through the cache (DRAM model)
@@ -96,7 +105,9 @@ class Sampler {
 // out[0..2][i]. `lod` (if not null) receives each pixel's LOD. Shared by the bump fetch
 // and the colour texture's fetch.
 // `cycles` receives each pixel's cycles in the texture unit, `lines` (if not null: the
-// sampler has a memory) the DRAM lines it moved.
+// sampler has a memory) the DRAM lines it moved. T: float, or Counted<float> to count
+// what the code does (the testbench's check of the declared counts).
+template <class T = float>
 void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map, Sampler& sampler,
                  float out[3][kSpanMax], Ops& ops, ValueRange& uv_range, uint16_t cycles[kSpanMax],
                  float (*uv_lod)[kSpanMax] = nullptr, uint16_t* lines = nullptr);
