@@ -261,10 +261,10 @@ TEST_CASE("float16 lighting under a light past its range: counted, and no infini
 // datapaths run on Counted<float> instead, which counts what the code does, and the two
 // are held together per block. Checked: the blocks whose datapath is written over the
 // number type. The texture unit's filters (texture_fetch, bump_fetch) are held to their
-// declared counts in test_texturing. Not checked (their float32 code is not, or not
-// all): texel_project (its per-triangle setup in double), parallax (the exact cell test
-// stays float32, and its tallies are by hand), and setup, raster, framebuffer (no number
-// format).
+// declared counts in test_texturing, the parallax tracers' in test_parallax (all but
+// the exact cell test, float32 in core, and the block's per-pixel entry and exit, by
+// hand). Not checked: texel_project (its per-triangle setup in double), and setup,
+// raster, framebuffer (no number format).
 TEST_CASE("every formatted block's declared operation counts are what its number type counts", "[numbers][ops]") {
   struct Case {
     const char* scene;

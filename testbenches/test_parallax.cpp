@@ -810,3 +810,69 @@ TEST_CASE("the hit layers: the pipeline's traced hit against the golden model's 
   CHECK(modules::render_loop(plain).frame.find("parallax.u") == nullptr);
   CHECK(reference::to_frame(reference::render(plain)).find("parallax.u") == nullptr);
 }
+
+TEST_CASE("the tracers' declared operation counts are what their code counts", "[parallax][ops]") {
+  // Each tracer runs twice on the same rays: in float, declaring its operations, and on
+  // Counted<float>, which counts what the code does (height and trilinear reads
+  // included). The exact cell test runs in float32 in core (shared with the map
+  // builders), unseen by the counting type: its declared count is added per cell tested.
+  struct Tracer {
+    core::ParallaxMethod method;
+    core::DistanceMap map;
+    core::ConeKind cones;
+  };
+  using M = core::ParallaxMethod;
+  const Tracer tracers[] = {{M::Offset, {}, {}},
+                            {M::Steep, {}, {}},
+                            {M::Pom, {}, {}},
+                            {M::Relief, {}, {}},
+                            {M::Distance, core::DistanceMap::BoxGap, {}},
+                            {M::Distance, core::DistanceMap::Refined, {}},
+                            {M::Distance, core::DistanceMap::Donnelly, {}},
+                            {M::Cone, {}, core::ConeKind::Classic},
+                            {M::Cone, {}, core::ConeKind::Relaxed}};
+  uint64_t traces = 0, cells = 0;
+  for (const core::Texture& map : {steps_map(), noise_map()})
+    for (const Tracer& tr : tracers)
+      for (bool early_exit : {true, false}) {
+        core::ParallaxSettings s = settings(tr.method, tr.map);
+        s.cones = tr.cones, s.early_exit = early_exit, s.max_iterations = 64;
+        const modules::ParallaxMaps maps = modules::build_parallax_maps(map, s, "map");
+        for (double elevation : {60.0, 30.0, 15.0, 5.0}) {
+          const View v = view(elevation, 12);
+          for (const glm::dvec2& e : v.entries) {
+            const float x = float(e.x * 64 - 0.5), y = float((1 - e.y) * 64 - 0.5);
+            const float a = float(v.d.x), b = float(v.d.y), c = float(v.d.z);
+            modules::Ops plain, declared;
+            const modules::ParallaxTrace t = modules::trace_parallax(s, maps, x, y, a, b, c, &plain);
+            modules::NumberContext numbers;
+            modules::count_float32_operations = true;
+            const modules::ParallaxTrace k = modules::trace_parallax(s, maps, x, y, a, b, c, &declared, &numbers);
+            modules::count_float32_operations = false;
+            const modules::Ops counted = numbers.events.counted + modules::kParallaxOpsCell * uint64_t(k.cells);
+            INFO(core::to_string(tr.method) << " " << core::to_string(tr.map) << " " << core::to_string(tr.cones)
+                                            << (early_exit ? " early exit" : " fixed length") << " at " << elevation
+                                            << "°: declared-counted add " << int64_t(declared.add - counted.add)
+                                            << " mul " << int64_t(declared.mul - counted.mul) << " div "
+                                            << int64_t(declared.div - counted.div) << " sqrt "
+                                            << int64_t(declared.sqrt - counted.sqrt) << " rsqrt "
+                                            << int64_t(declared.rsqrt - counted.rsqrt) << " iterations "
+                                            << k.iterations << " cells " << k.cells);
+            REQUIRE(k.x == t.x);  // the counting type computes the same float32
+            REQUIRE(k.y == t.y);
+            REQUIRE(k.iterations == t.iterations);
+            REQUIRE(plain == declared);
+            CHECK(declared.add == counted.add);
+            CHECK(declared.mul == counted.mul);
+            CHECK(declared.div == counted.div);
+            CHECK(declared.sqrt == counted.sqrt);
+            CHECK(declared.rsqrt == counted.rsqrt);
+            CHECK(declared.lut == counted.lut);
+            CHECK(declared.fetch == uint64_t(k.fetches));  // texels read, as the trace tallies them
+            ++traces, cells += uint64_t(k.cells);
+          }
+        }
+      }
+  INFO(traces << " traces, " << cells << " cell tests");
+  CHECK(cells > 0);
+}

@@ -38,24 +38,6 @@ float VolumeMap::sample(float x, float y, float z) const {
   return at(i, j, k);
 }
 
-float VolumeMap::trilinear(float x, float y, float z) const {
-  const float gx = x - 0.5f, gy = y - 0.5f, gz = std::clamp(z - 0.5f, 0.0f, float(slices - 1));
-  const float fx = std::floor(gx), fy = std::floor(gy), fz = std::floor(gz);
-  const float a = gx - fx, b = gy - fy, c = gz - fz;
-  int i0 = int(fx) % width, j0 = int(fy) % height;
-  if (i0 < 0) i0 += width;
-  if (j0 < 0) j0 += height;
-  const int i1 = (i0 + 1) % width, j1 = (j0 + 1) % height;
-  const int k0 = int(fz), k1 = std::min(k0 + 1, slices - 1);
-  auto plane = [&](int k) {
-    const float top = at(i0, j0, k) + (at(i1, j0, k) - at(i0, j0, k)) * a;
-    const float bottom = at(i0, j1, k) + (at(i1, j1, k) - at(i0, j1, k)) * a;
-    return top + (bottom - top) * b;
-  };
-  const float p0 = plane(k0), p1 = plane(k1);
-  return p0 + (p1 - p0) * c;
-}
-
 std::vector<float> cell_tops(const HeightField& f) {
   std::vector<float> top(f.h.size());
   for (int j = 0; j < f.height; ++j)

@@ -44,14 +44,16 @@ struct HeightField {
 // InputError naming `file` and `field` for an empty map or a non-finite value.
 HeightField height_field(const Texture& map, const std::string& file, const std::string& field);
 
-// A height field's bilinear value at (x, y) in texels (wrapped).
+// A height field's bilinear value at (x, y) in texels (wrapped). Real: a floating type,
+// or the tracer's counting one (floor found by its argument's type).
 template <class Real>
 Real bilinear_height(const HeightField& f, Real x, Real y) {
-  const Real fx = std::floor(x), fy = std::floor(y);
+  using std::floor;
+  const Real fx = floor(x), fy = floor(y);
   const int i = int(fx), j = int(fy);
   const Real a = x - fx, b = y - fy;
   const Real h00 = f.at(i, j), h10 = f.at(i + 1, j), h01 = f.at(i, j + 1), h11 = f.at(i + 1, j + 1);
-  return (h00 + (h10 - h00) * a) * (1 - b) + (h01 + (h11 - h01) * a) * b;
+  return (h00 + (h10 - h00) * a) * (Real(1) - b) + (h01 + (h11 - h01) * a) * b;
 }
 
 // The smallest s in [0, length] where the segment p + s·d (p relative to the cell's
@@ -163,9 +165,33 @@ struct VolumeMap {
   // The voxel that holds (x, y, z), z clamped into the volume.
   float sample(float x, float y, float z) const;
   // The trilinear value at (x, y, z), voxel centres at (i + ½, j + ½, k + ½); wrapping
-  // in x and y, clamped to the centres of the first and last slice in z.
-  float trilinear(float x, float y, float z) const;
+  // in x and y, clamped to the centres of the first and last slice in z. Real: float,
+  // or the tracer's counting type.
+  template <class Real>
+  Real trilinear_as(Real x, Real y, Real z) const;
+  float trilinear(float x, float y, float z) const { return trilinear_as(x, y, z); }
 };
+
+template <class Real>
+Real VolumeMap::trilinear_as(Real x, Real y, Real z) const {
+  using std::floor;
+  const Real half = Real(0.5f);
+  const Real gx = x - half, gy = y - half, gz = std::clamp(z - half, Real(0.0f), Real(float(slices - 1)));
+  const Real fx = floor(gx), fy = floor(gy), fz = floor(gz);
+  const Real a = gx - fx, b = gy - fy, c = gz - fz;
+  int i0 = int(fx) % width, j0 = int(fy) % height;
+  if (i0 < 0) i0 += width;
+  if (j0 < 0) j0 += height;
+  const int i1 = (i0 + 1) % width, j1 = (j0 + 1) % height;
+  const int k0 = int(fz), k1 = std::min(k0 + 1, slices - 1);
+  auto plane = [&](int k) {
+    const Real v00 = at(i0, j0, k), v10 = at(i1, j0, k), v01 = at(i0, j1, k), v11 = at(i1, j1, k);
+    const Real top = v00 + (v10 - v00) * a, bottom = v01 + (v11 - v01) * a;
+    return top + (bottom - top) * b;
+  };
+  const Real p0 = plane(k0), p1 = plane(k1);
+  return p0 + (p1 - p0) * c;
+}
 
 // The cell's conservative top: the largest of its four corners. The bilinear patch never
 // rises above it, so the boxes [cell] × [0, D·top] hold the relief.

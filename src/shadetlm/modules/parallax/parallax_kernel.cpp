@@ -56,16 +56,37 @@ ParallaxMaps build_parallax_maps(const core::Texture& height_map, const core::Pa
 
 namespace {
 
-// Operation counts of the tracer's steps (docs/parallax.md).
-constexpr Ops kOpsRay{/*add*/ 9, /*mul*/ 16, 0, 0, /*rsqrt*/ 1};  // tangent-space ray, scaled and normalized
-constexpr Ops kOpsHeightRead{/*add*/ 8, /*mul*/ 4, 0, 0, 0, 0, /*fetch*/ 4};  // bilinear height, ×D
-constexpr Ops kOpsLayer{/*add*/ 11, /*mul*/ 4, 0, 0, 0, 0, /*fetch*/ 4};                     // one layer down
-constexpr Ops kOpsSphere{/*add*/ 3, /*mul*/ 3, 0, 0, 0, 0, /*fetch*/ 1};        // p += d(p)·v̂
-// Donnelly's step: a trilinear read (3 fractions, 7 lerps of 1 mul and 2 add, 8 voxels), then p += d·v̂.
-constexpr Ops kOpsTrilinearSphere{/*add*/ 3 + 14 + 3, /*mul*/ 7 + 3, 0, 0, 0, 0, /*fetch*/ 8};
-constexpr Ops kOpsCone{/*add*/ 5, /*mul*/ 3, /*div*/ 2, 0, 0, 0, /*fetch*/ 1};  // step to the cone's side
-constexpr Ops kOpsCell{/*add*/ 16, /*mul*/ 18, /*div*/ 2, /*sqrt*/ 1, 0, 0, /*fetch*/ 4};  // exact cell test
-constexpr Ops kOpsOut{/*add*/ 4, /*mul*/ 2};  // texels back to uv
+// Operation counts of the tracer's steps (docs/parallax.md), each what its code below
+// does on the tracer's numbers (test_parallax runs it on a counting type). A product
+// with ½ is an exponent shift: wiring.
+// The ray: the direction scaled (a·W, −b·H, c·D/depth) and normalized (1/√|d|²).
+constexpr Ops kOpsRay{/*add*/ 2, /*mul*/ 9, /*div*/ 2, /*sqrt*/ 1};
+constexpr Ops kOpsBilinear{/*add*/ 8, /*mul*/ 4, 0, 0, 0, 0, /*fetch*/ 4};  // a bilinear height (2 fractions, 3 lerps)
+constexpr Ops kOpsHeightRead = kOpsBilinear + Ops{/*add*/ 0, /*mul*/ 1};    // … ×D, in slices
+// Offset limiting: 1/|v| (3 mul, 2 add, √, ÷), depth·(1 − h)·1/|v|, the shift along a and b.
+constexpr Ops kOpsOffset = kOpsBilinear + Ops{/*add*/ 5, /*mul*/ 9, /*div*/ 1, /*sqrt*/ 1};
+// The layers' setup: cos θ = −c/|v|, the layer count n (1 add, 1 mul), the step D/n/−v̂z.
+constexpr Ops kOpsLayers{/*add*/ 3, /*mul*/ 4, /*div*/ 3, /*sqrt*/ 1};
+constexpr Ops kOpsLayer = kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 4};  // one layer down: i·step, p = p₀ + ·v̂
+constexpr Ops kOpsPom{/*add*/ 7, /*mul*/ 2, /*div*/ 1};                 // the layers' line through the two heights
+constexpr Ops kOpsMidpoint = kOpsHeightRead + Ops{/*add*/ 3};           // a bisection: (p + q)·½ and its height
+constexpr Ops kOpsBisect{/*add*/ 1, /*mul*/ 1, /*div*/ 1};              // its step's run across: (qz − pz)/v̂z·|v̂xy|
+constexpr Ops kOpsSphere{/*add*/ 3, /*mul*/ 3, 0, 0, 0, 0, /*fetch*/ 1};  // p += d(p)·v̂
+// Donnelly's step: a trilinear read (3 offsets by ½, 3 fractions, 7 lerps of 1 mul and 2
+// add, 8 voxels), then p += d·v̂; a step through the floor is put back on it.
+constexpr Ops kOpsTrilinearSphere{/*add*/ 3 + 3 + 14 + 3, /*mul*/ 7 + 3, 0, 0, 0, 0, /*fetch*/ 8};
+constexpr Ops kOpsFloor{/*add*/ 2, /*mul*/ 2, /*div*/ 1};
+constexpr Ops kOpsAcross{/*add*/ 1, /*mul*/ 2, 0, /*sqrt*/ 1};                 // |v̂xy|, once a ray (cones)
+constexpr Ops kOpsConeStep{/*add*/ 5, /*mul*/ 3, /*div*/ 2};       // to the cone's side, and p += t·v̂
+constexpr Ops kOpsCone = kOpsConeStep + Ops{0, 0, 0, 0, 0, 0, /*fetch*/ 1};  // … with its cell's read
+constexpr Ops kOpsAdvance{/*add*/ 3, /*mul*/ 3};  // p += t·v̂, after the exact cells' march
+
+// x times a power of two (½): an exponent shift in hardware, not counted.
+template <class T>
+T shifted(T x, T power_of_two) {
+  if constexpr (is_counted<T>::value) return T(value(x) * value(power_of_two));
+  else return x * power_of_two;
+}
 
 // Whether a value of the tracer is finite (float16 overflows to infinity; the value
 // must not reach a texel index). In float32 the tracer's values stay far below the
@@ -77,43 +98,72 @@ bool finite(T v) {
 }
 
 // The texture unit's bilinear height at (x, y), in float32 like every texture read; the
-// tracer takes it into its format.
+// tracer takes it into its format. (Counted: the same float32, each operation counted.)
 template <class T>
 T height_at(const core::HeightField& f, T x, T y, MapReads* reads) {
   if (reads) reads->bilinear(float(x), float(y));
-  return T(core::bilinear_height<float>(f, float(x), float(y)));
+  if constexpr (is_counted<T>::value) return core::bilinear_height<T>(f, x, y);
+  else return T(core::bilinear_height<float>(f, float(x), float(y)));
 }
 
-// The exact cells from (x, y, z) on: the finish of the skipping tracers. The per-cell
-// quadratic (core::march_cells, shared with the map builders) runs in float32 whatever
-// the tracer's format; its result is taken back into the format.
+// The distance map's trilinear value, in float32 as height_at.
 template <class T>
-void finish_cells(const core::ParallaxSettings& s, const ParallaxMaps& m, T& x, T& y, T& z, T dx, T dy, T dz,
-                  ParallaxTrace& r, Ops* ops, MapReads* reads) {
+T trilinear_at(const core::VolumeMap& v, T x, T y, T z) {
+  if constexpr (is_counted<T>::value) return v.trilinear_as<T>(x, y, z);
+  else return T(v.trilinear(float(x), float(y), float(z)));
+}
+
+// A point, or a direction, in the tracer's space (core/parallax_map.hpp): x along u, y
+// down the rows, z in slices of the depth. In the number type T.
+template <class T>
+struct Point {
+  T x, y, z;
+};
+// p + t·d (3 mul, 3 add).
+template <class T>
+Point<T> advance(Point<T> p, T t, Point<T> d) {
+  return {p.x + t * d.x, p.y + t * d.y, p.z + t * d.z};
+}
+// Halfway between p and q (3 add; the halving a shift).
+template <class T>
+Point<T> midpoint(Point<T> p, Point<T> q) {
+  const T half = T(0.5f);
+  return {shifted(p.x + q.x, half), shifted(p.y + q.y, half), shifted(p.z + q.z, half)};
+}
+template <class T>
+bool finite(Point<T> p) {
+  return finite(p.x) && finite(p.y) && finite(p.z);
+}
+
+// The view ray of a pixel. In the number type T.
+template <class T>
+struct Ray {
+  T a, b, c;          // the tangent-space direction
+  T W, H, D;          // the map's size: texels across and down, slices deep
+  Point<T> entry;     // where it enters the map's top (texels; z = D)
+  Point<T> d;         // its direction, unit in the tracer's space
+  MapReads* reads = nullptr;  // the map reads (DRAM model)
+};
+
+// The exact cells from p on: the finish of the skipping tracers. The per-cell quadratic
+// (core::march_cells, shared with the map builders) runs in float32 whatever the
+// tracer's format; its result is taken back into the format.
+template <class T>
+void finish_cells(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, Point<T>& p,
+                  ParallaxTrace& r, Ops* ops) {
   const int budget = std::max(1, s.max_iterations - r.iterations);
-  if (!finite(x) || !finite(y) || !finite(z)) return;
-  const float fdx = float(dx), fdy = float(dy), fdz = float(dz);
-  const auto march = core::march_cells<float>(m.field, float(x), float(y), float(z), fdx, fdy, fdz,
-                                              float(m.slices), budget, [&](int i, int j) {
-                                                if (reads) reads->cell(i, j);
+  if (!finite(p)) return;
+  const auto march = core::march_cells<float>(m.field, float(p.x), float(p.y), float(p.z), float(ray.d.x),
+                                              float(ray.d.y), float(ray.d.z), float(m.slices), budget,
+                                              [&](int i, int j) {
+                                                if (ray.reads) ray.reads->cell(i, j);
                                               });
-  const T t = T(march.t);
-  x += t * dx, y += t * dy, z += t * dz;
+  p = advance(p, T(march.t), ray.d);
   r.iterations += march.cells;
   r.cells += march.cells;
   r.fetches += 4 * march.cells;
-  if (ops) *ops += kOpsCell * uint64_t(march.cells);
+  if (ops) *ops += kParallaxOpsCell * uint64_t(march.cells) + kOpsAdvance;
 }
-
-// The view ray in the tracer's space (core/parallax_map.hpp): x along u, y down the
-// rows, z in slices of the depth; (dx, dy, dz) unit there. In the number type T.
-template <class T>
-struct Ray {
-  T x0, y0, a, b, c;  // the entry (texels) and the tangent-space direction
-  T W, H, D;          // the map's size: texels across and down, slices deep
-  T dx, dy, dz;
-  MapReads* reads = nullptr;  // the map reads (DRAM model)
-};
 
 // The ray of a pixel; false where there is none to trace (no depth, a ray leaving the
 // surface, no direction, or one so close to the surface it would run over 10⁶ texels):
@@ -124,18 +174,19 @@ bool make_ray(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0f,
   if (!(s.depth > 0) || !(cf < 0) || !std::isfinite(af) || !std::isfinite(bf)) return false;
   const core::HeightField& f = m.field;
   ray.W = T(float(f.width)), ray.H = T(float(f.height)), ray.D = T(float(m.slices));
-  ray.x0 = T(x0f), ray.y0 = T(y0f), ray.a = T(af), ray.b = T(bf), ray.c = T(cf);
+  ray.entry = {T(x0f), T(y0f), ray.D};
+  ray.a = T(af), ray.b = T(bf), ray.c = T(cf);
   const T one = T(1.0f), zero = T(0.0f);
   if (ops) *ops += kOpsRay;
-  T dx = ray.a * ray.W, dy = -ray.b * ray.H, dz = ray.c * ray.D / T(float(s.depth));
-  const T length2 = dx * dx + dy * dy + dz * dz;
+  Point<T> d{ray.a * ray.W, -ray.b * ray.H, ray.c * ray.D / T(float(s.depth))};
+  const T length2 = d.x * d.x + d.y * d.y + d.z * d.z;
   if (!(length2 > zero)) return false;  // no direction (before a reciprocal of 0)
   const T scale = one / sqrt_op(length2);
   if (!std::isfinite(float(scale)) || scale == zero) return false;
-  dx *= scale, dy *= scale, dz *= scale;  // unit in the tracer's space
+  d = {d.x * scale, d.y * scale, d.z * scale};  // unit in the tracer's space
   // A ray this close to the surface would run over 10⁶ texels: treated as parallel.
-  if (-dz < T(1e-6f) || !(dz < zero)) return false;
-  ray.dx = dx, ray.dy = dy, ray.dz = dz;
+  if (-d.z < T(1e-6f) || !(d.z < zero)) return false;
+  ray.d = d;
   return true;
 }
 
@@ -145,96 +196,109 @@ template <class T>
 void trace_offset(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, ParallaxTrace& r,
                   Ops* ops) {
   const T one = T(1.0f), a = ray.a, b = ray.b, c = ray.c;
-  const T h = height_at(m.field, ray.x0, ray.y0, ray.reads);
+  const T h = height_at(m.field, ray.entry.x, ray.entry.y, ray.reads);
   const T inv = one / sqrt_op(a * a + b * b + c * c);
   const T shift = T(float(s.depth)) * (one - h) * inv;
-  r.x = float(ray.x0 + shift * a * ray.W), r.y = float(ray.y0 - shift * b * ray.H);
+  r.x = float(ray.entry.x + shift * a * ray.W), r.y = float(ray.entry.y - shift * b * ray.H);
   r.iterations = 1, r.fetches = 4;
-  if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 6, 0, 0, /*rsqrt*/ 1} + kOpsOut;
+  if (ops) *ops += kOpsOffset;
 }
 
-// POM: where the line between the two layers' heights crosses the ray.
+// The relief's height under p, in slices (a height read, one iteration).
 template <class T>
-void pom_finish(const core::ParallaxSettings&, const ParallaxMaps& m, const Ray<T>& ray, T px, T py, T pz, T ph, T h,
-                T& x, T& y, T z, ParallaxTrace& r, Ops* ops) {
-  const T D = ray.D, one = T(1.0f), zero = T(0.0f);
-  if (pz == D) {
-    // Under the relief at the first layer: the entry's height, for the line below.
-    ph = D * height_at(m.field, ray.x0, ray.y0, ray.reads);
-    ++r.iterations, r.fetches += 4;
-    if (ops) *ops += kOpsHeightRead;
-  }
-  const T above = pz - ph, below = h - z;
-  const T w = above + below > zero ? above / (above + below) : one;
-  x = px + (x - px) * w, y = py + (y - py) * w;
-  if (ops) *ops += Ops{/*add*/ 6, /*mul*/ 2, /*div*/ 1};
+T slices_under(const ParallaxMaps& m, const Ray<T>& ray, Point<T> p, ParallaxTrace& r, Ops* ops) {
+  ++r.iterations, r.fetches += 4;
+  if (ops) *ops += kOpsHeightRead;
+  return ray.D * height_at(m.field, p.x, p.y, ray.reads);
 }
 
-// Relief: a binary search between the last layer above and the first one under.
+// POM: where the line between the heights of the last layer above (`above`, its height
+// `above_h`) and the first under (p, its height h) crosses the ray.
 template <class T>
-void relief_finish(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T px, T py, T pz, T& x,
-                   T& y, T& z, ParallaxTrace& r, Ops* ops) {
+void pom_finish(const ParallaxMaps& m, const Ray<T>& ray, Point<T> above, T above_h, T h, Point<T>& p,
+                ParallaxTrace& r, Ops* ops) {
+  const T one = T(1.0f), zero = T(0.0f);
+  // Under the relief at the first layer: the entry's height, for the line below.
+  if (above.z == ray.D) above_h = slices_under(m, ray, ray.entry, r, ops);
+  const T over = above.z - above_h, under = h - p.z, sum = over + under;
+  const T w = sum > zero ? over / sum : one;
+  if (!(sum > zero)) count_discarded<T>(Ops{0, 0, /*div*/ 1});
+  p.x = above.x + (p.x - above.x) * w, p.y = above.y + (p.y - above.y) * w;
+  if (ops) *ops += kOpsPom;
+}
+
+// Bisections on the sign of z − D·h (a height read each) between `above`, over the
+// relief, and `under`, at or under it: `steps` at most, or (steps < 0) until the step is
+// at most a texel across (`run` texels now), within the iteration cap.
+template <class T>
+void bisect(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, int steps, T run,
+            Point<T>& above, Point<T>& under, ParallaxTrace& r, Ops* ops) {
   const T half = T(0.5f);
-  for (int i = 0; i < s.binary_steps && r.iterations < s.max_iterations; ++i) {
-    const T mx = (px + x) * half, my = (py + y) * half, mz = (pz + z) * half;
-    const T mh = ray.D * height_at(m.field, mx, my, ray.reads);
+  for (int i = 0; (steps < 0 ? run > T(1.0f) : i < steps) && r.iterations < s.max_iterations; ++i) {
+    const Point<T> mid = midpoint(above, under);
+    const T h = ray.D * height_at(m.field, mid.x, mid.y, ray.reads);
     ++r.iterations, r.fetches += 4;
-    if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 3};
-    if (mz <= mh) x = mx, y = my, z = mz;
-    else px = mx, py = my, pz = mz;
+    if (ops) *ops += kOpsMidpoint;
+    (mid.z <= h ? under : above) = mid;
+    run = shifted(run, half);
   }
 }
 
 // Steep parallax, POM and relief: the layer search, then each one's finish. False if
 // the ray overflowed (float16: counted; the entry kept).
 template <class T>
-bool trace_layers(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& x, T& y, T& z,
+bool trace_layers(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, Point<T>& p,
                   ParallaxTrace& r, Ops* ops) {
-  const core::HeightField& f = m.field;
   const T D = ray.D, a = ray.a, b = ray.b, c = ray.c;
   // More layers the flatter the view: n = max + (min − max)·|cos θ|, θ from the normal.
   const float cos_view = float(-c / sqrt_op(a * a + b * b + c * c));
+  // (n in float32 whatever the format, and counted so: one product, one sum)
   const int layers = std::max(1, int(std::lround(float(s.layers_max) + float(s.layers_min - s.layers_max) * cos_view)));
-  const T step = (D / T(float(layers))) / -ray.dz;  // ray length per layer
-  T px = x, py = y, pz = z, ph = D;                  // the last point above (the entry)
-  T h = ph;
+  count_discarded<T>(Ops{/*add*/ 1, /*mul*/ 1});
+  const T step = (D / T(float(layers))) / -ray.d.z;  // ray length per layer
+  if (ops) *ops += kOpsLayers;
+  Point<T> above = p;  // the last point above (the entry)
+  T above_h = D, h = D;
   for (int i = 1; i <= layers && r.iterations < s.max_iterations; ++i) {
-    const T along = T(float(i)) * step;
-    x = ray.x0 + along * ray.dx, y = ray.y0 + along * ray.dy, z = D + along * ray.dz;
-    if (!finite(x) || !finite(y)) return false;
-    h = D * height_at(f, x, y, ray.reads);
+    p = advance(ray.entry, T(float(i)) * step, ray.d);
+    if (!finite(p.x) || !finite(p.y)) return false;
+    h = D * height_at(m.field, p.x, p.y, ray.reads);
     ++r.iterations, r.fetches += 4;
     if (ops) *ops += kOpsLayer;
-    if (z <= h) break;
-    px = x, py = y, pz = z, ph = h;
+    if (p.z <= h) break;
+    above = p, above_h = h;
   }
   if (!s.early_exit) {  // the loop runs every layer; the hit is the first one under
     const int idle = layers - std::min(layers, r.iterations);
     r.iterations += idle, r.fetches += 4 * idle;
     if (ops) *ops += kOpsLayer * uint64_t(idle);
+    count_discarded<T>(kOpsLayer * uint64_t(idle));  // done in hardware, their results not needed
   }
-  if (s.method == core::ParallaxMethod::Pom && z <= h) pom_finish(s, m, ray, px, py, pz, ph, h, x, y, z, r, ops);
-  else if (s.method == core::ParallaxMethod::Relief && z <= h) relief_finish(s, m, ray, px, py, pz, x, y, z, r, ops);
+  if (p.z <= h && s.method == core::ParallaxMethod::Pom) pom_finish(m, ray, above, above_h, h, p, r, ops);
+  if (p.z <= h && s.method == core::ParallaxMethod::Relief) bisect(s, m, ray, s.binary_steps, T(0.0f), above, p, r, ops);
   return true;
 }
 
 // Sphere tracing: p ← p + d(p)·v̂, the voxel holding p read as stored (its value is safe
 // for every point of the voxel); then the exact cells. False if the ray overflowed.
 template <class T>
-bool trace_spheres(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& x, T& y, T& z,
+bool trace_spheres(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, Point<T>& p,
                    ParallaxTrace& r, Ops* ops) {
   const T near = T(kParallaxNear);
   while (r.iterations < s.max_iterations) {
-    if (!finite(x) || !finite(y) || !finite(z)) return false;
-    if (ray.reads) ray.reads->voxel(float(x), float(y), float(z), m.volume);
-    const T d = T(m.volume.sample(float(x), float(y), float(z)));
+    if (!finite(p)) return false;
+    if (ray.reads) ray.reads->voxel(float(p.x), float(p.y), float(p.z), m.volume);
+    const T d = T(m.volume.sample(float(p.x), float(p.y), float(p.z)));
     ++r.iterations, ++r.fetches;
     if (ops) *ops += kOpsSphere;
-    if (d < near) break;
-    x += d * ray.dx, y += d * ray.dy, z += d * ray.dz;
+    if (d < near) {
+      count_discarded<T>(kOpsSphere);  // the step not taken, done in hardware all the same
+      break;
+    }
+    p = advance(p, d, ray.d);
     ++r.skips;
   }
-  if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, ray.dx, ray.dy, ray.dz, r, ops, ray.reads);
+  if (r.iterations < s.max_iterations) finish_cells(s, m, ray, p, r, ops);
   return true;
 }
 
@@ -246,23 +310,26 @@ bool trace_spheres(const core::ParallaxSettings& s, const ParallaxMaps& m, const
 // would end.
 constexpr float kDonnellyConverged = 1.0f / 64;
 template <class T>
-bool trace_donnelly(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& x, T& y, T& z,
+bool trace_donnelly(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, Point<T>& p,
                     ParallaxTrace& r, Ops* ops) {
   const int steps = std::min(s.steps, s.max_iterations);
-  const T converged = T(kDonnellyConverged);
+  const T converged = T(kDonnellyConverged), zero = T(0.0f);
   while (r.iterations < steps) {
-    if (!finite(x) || !finite(y) || !finite(z)) return false;
-    if (ray.reads) ray.reads->trilinear(float(x), float(y), float(z), m.volume);
-    const T d = T(m.volume.trilinear(float(x), float(y), float(z)));
+    if (!finite(p)) return false;
+    if (ray.reads) ray.reads->trilinear(float(p.x), float(p.y), float(p.z), m.volume);
+    const T d = trilinear_at(m.volume, p.x, p.y, p.z);
     ++r.iterations, ++r.trilinear, r.fetches += 8;
     if (ops) *ops += kOpsTrilinearSphere;
-    if (s.early_exit && d < converged) break;
-    x += d * ray.dx, y += d * ray.dy, z += d * ray.dz;
+    if (s.early_exit && d < converged) {
+      count_discarded<T>(kOpsSphere);
+      break;
+    }
+    p = advance(p, d, ray.d);
     ++r.skips;
-    if (z < T(0.0f)) {  // through the floor (the map clamps there): back onto it, the hit
-      const T back = z / ray.dz;
-      x -= back * ray.dx, y -= back * ray.dy, z = T(0.0f);
-      if (ops) *ops += Ops{/*add*/ 2, /*mul*/ 2, /*div*/ 1};
+    if (p.z < zero) {  // through the floor (the map clamps there): back onto it, the hit
+      const T back = p.z / ray.d.z;
+      p = {p.x - back * ray.d.x, p.y - back * ray.d.y, zero};
+      if (ops) *ops += kOpsFloor;
       break;
     }
   }
@@ -270,15 +337,16 @@ bool trace_donnelly(const core::ParallaxSettings& s, const ParallaxMaps& m, cons
     const int idle = steps - std::min(steps, r.iterations);
     r.iterations += idle, r.trilinear += idle, r.fetches += 8 * idle;
     if (ops) *ops += kOpsTrilinearSphere * uint64_t(idle);
+    count_discarded<T>(kOpsTrilinearSphere * uint64_t(idle));
   }
   return true;
 }
 
-// The cone map's cell under (x, y), read (one fetch, one iteration): its apex and ratio.
+// The cone map's cell under p, read (one fetch, one iteration): its apex and ratio.
 template <class T>
-void read_cone(const ParallaxMaps& m, const Ray<T>& ray, T x, T y, T& apex, T& ratio, ParallaxTrace& r, Ops* ops) {
+void read_cone(const ParallaxMaps& m, const Ray<T>& ray, Point<T> p, T& apex, T& ratio, ParallaxTrace& r, Ops* ops) {
   const core::HeightField& f = m.field;
-  int i = int(float(floor_op(x))) % f.width, j = int(float(floor_op(y))) % f.height;
+  int i = int(float(floor_op(p.x))) % f.width, j = int(float(floor_op(p.y))) % f.height;
   if (i < 0) i += f.width;
   if (j < 0) j += f.height;
   const size_t cell = size_t(j) * size_t(f.width) + size_t(i);
@@ -293,46 +361,39 @@ void read_cone(const ParallaxMaps& m, const Ray<T>& ray, T x, T y, T& apex, T& r
 template <class T>
 T cone_step(T above, T ratio, T down, T across) {
   const T zero = T(0.0f);
-  return above > zero && ratio > zero ? above / (down + across / ratio) : zero;
+  if (above > zero && ratio > zero) return above / (down + across / ratio);
+  count_discarded<T>(Ops{/*add*/ 1, 0, /*div*/ 2});  // computed in hardware, then selected away
+  return zero;
+}
+
+// The ray's run across a unit of its length, |v̂xy|, once a ray (the cone tracers).
+template <class T>
+T run_across(const Ray<T>& ray, Ops* ops) {
+  if (ops) *ops += kOpsAcross;
+  return sqrt_op(ray.d.x * ray.d.x + ray.d.y * ray.d.y);
 }
 
 // Cone stepping: from p over cell (i, j), the ray stays in the cone of the cell — free
 // of relief — until it has come down to apex + (distance from the footprint)/ratio; then
 // the exact cells. False if the ray overflowed.
 template <class T>
-bool trace_cones(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& x, T& y, T& z,
+bool trace_cones(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, Point<T>& p,
                  ParallaxTrace& r, Ops* ops) {
-  const T across = sqrt_op(ray.dx * ray.dx + ray.dy * ray.dy), down = -ray.dz;
+  const T across = run_across(ray, ops), down = -ray.d.z;
   while (r.iterations < s.max_iterations) {
-    if (!finite(x) || !finite(y)) return false;
+    if (!finite(p.x) || !finite(p.y)) return false;
     T apex, ratio;
-    read_cone(m, ray, x, y, apex, ratio, r, ops);
-    const T t = cone_step(z - apex, ratio, down, across);
-    if (t < T(kParallaxNear)) break;
-    x += t * ray.dx, y += t * ray.dy, z += t * ray.dz;
+    read_cone(m, ray, p, apex, ratio, r, ops);
+    const T t = cone_step(p.z - apex, ratio, down, across);
+    if (t < T(kParallaxNear)) {
+      count_discarded<T>(kOpsAdvance);  // the step not taken
+      break;
+    }
+    p = advance(p, t, ray.d);
     ++r.skips;
   }
-  if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, ray.dx, ray.dy, ray.dz, r, ops, ray.reads);
+  if (r.iterations < s.max_iterations) finish_cells(s, m, ray, p, r, ops);
   return true;
-}
-
-// Bisections on the sign of z − D·h (a height read each) between p, above the relief,
-// and q, at or under it, until the step is at most a texel across or the cap is reached.
-// On a relaxed cone's step the sign is + then −, so the first hit stays between them.
-template <class T>
-void bisect_step(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& px, T& py, T& pz, T& qx,
-                 T& qy, T& qz, ParallaxTrace& r, Ops* ops) {
-  const T half = T(0.5f), across = sqrt_op(ray.dx * ray.dx + ray.dy * ray.dy);
-  T run = (qz - pz) / ray.dz * across;  // the step's length across, texels
-  while (run > T(1.0f) && r.iterations < s.max_iterations) {
-    const T mx = (px + qx) * half, my = (py + qy) * half, mz = (pz + qz) * half;
-    const T mh = ray.D * height_at(m.field, mx, my, ray.reads);
-    ++r.iterations, r.fetches += 4;
-    if (ops) *ops += kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 3};
-    if (mz <= mh) qx = mx, qy = my, qz = mz;
-    else px = mx, py = my, pz = mz;
-    run = run * half;
-  }
 }
 
 // Relaxed cone stepping on a safe relaxed map (core::relaxed_cone_map): the same steps,
@@ -340,39 +401,46 @@ void bisect_step(const core::ParallaxSettings& s, const ParallaxMaps& m, const R
 // at or under its new cell's apex, one height read tells: above, the exact cells go on
 // from there; under, the hit lies in the step, and bisections on the sign of z − D·h
 // (each a height read) narrow it to one texel across before the exact cells finish.
+// On a relaxed cone's step the sign is + then −, so the first hit stays between them.
 template <class T>
-bool trace_relaxed_cones(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T& x, T& y,
-                         T& z, ParallaxTrace& r, Ops* ops) {
-  const T across = sqrt_op(ray.dx * ray.dx + ray.dy * ray.dy), down = -ray.dz;
-  T px = x, py = y, pz = z;  // where the last step began: above the relief
-  bool above = true;         // (x, y, z) is known to be above the relief (the entry is)
+bool trace_relaxed_cones(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, Point<T>& p,
+                         ParallaxTrace& r, Ops* ops) {
+  const T across = run_across(ray, ops), down = -ray.d.z;
+  Point<T> start = p;  // where the last step began: above the relief
+  bool above = true;   // p is known to be above the relief (the entry is)
   while (r.iterations < s.max_iterations) {
-    if (!finite(x) || !finite(y)) return false;
+    if (!finite(p.x) || !finite(p.y)) return false;
     T apex, ratio;
-    read_cone(m, ray, x, y, apex, ratio, r, ops);
-    if (z > apex) above = true;  // over the cell's box top
-    if (!above) {                // at or under it after a step: one height read tells
-      if (r.iterations >= s.max_iterations) break;
-      const T h = ray.D * height_at(m.field, x, y, ray.reads);
-      ++r.iterations, r.fetches += 4;
-      if (ops) *ops += kOpsHeightRead;
-      if (z <= h) {  // under: the hit is in the step from p, search it
-        bisect_step(s, m, ray, px, py, pz, x, y, z, r, ops);
-        x = px, y = py, z = pz, above = true;  // above the relief, the hit within a texel or so on
+    read_cone(m, ray, p, apex, ratio, r, ops);
+    if (p.z > apex) above = true;  // over the cell's box top
+    if (!above) {                  // at or under it after a step: one height read tells
+      if (r.iterations >= s.max_iterations) {
+        count_discarded<T>(kOpsConeStep);  // the iteration's step, not taken
+        break;
+      }
+      if (p.z <= slices_under(m, ray, p, r, ops)) {  // under: the hit is in the step from start, search it
+        if (ops) *ops += kOpsBisect;
+        const T run = (p.z - start.z) / ray.d.z * across;  // the step's length across, texels
+        bisect(s, m, ray, -1, run, start, p, r, ops);
+        p = start, above = true;             // above the relief, the hit within a texel or so on
+        count_discarded<T>(kOpsConeStep);  // the iteration's step, not taken
         break;
       }
       above = true;
     }
-    const T t = cone_step(z - apex, ratio, down, across);
-    if (t < T(kParallaxNear)) break;
-    px = x, py = y, pz = z;
-    x += t * ray.dx, y += t * ray.dy, z += t * ray.dz;
+    const T t = cone_step(p.z - apex, ratio, down, across);
+    if (t < T(kParallaxNear)) {
+      count_discarded<T>(kOpsAdvance);  // the step not taken
+      break;
+    }
+    start = p;
+    p = advance(p, t, ray.d);
     ++r.skips, above = false;
   }
   // The cap came before the last step's end was checked: it may be under the relief, past
   // the hit; the trace stops where that step began instead, before the hit.
-  if (!above) x = px, y = py, z = pz;
-  if (r.iterations < s.max_iterations) finish_cells(s, m, x, y, z, ray.dx, ray.dy, ray.dz, r, ops, ray.reads);
+  if (!above) p = start;
+  if (r.iterations < s.max_iterations) finish_cells(s, m, ray, p, r, ops);
   return true;
 }
 
@@ -390,14 +458,14 @@ ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, f
     trace_offset(s, m, ray, r, ops);
     return r;
   }
-  T x = ray.x0, y = ray.y0, z = ray.D;
+  Point<T> p = ray.entry;
   const bool distance = s.method == core::ParallaxMethod::Distance, cone = s.method == core::ParallaxMethod::Cone;
   const bool donnelly = distance && s.map == core::DistanceMap::Donnelly;
-  const bool traced = donnelly ? trace_donnelly(s, m, ray, x, y, z, r, ops)
-                      : distance ? trace_spheres(s, m, ray, x, y, z, r, ops)
-                      : cone && s.cones == core::ConeKind::Relaxed ? trace_relaxed_cones(s, m, ray, x, y, z, r, ops)
-                      : cone   ? trace_cones(s, m, ray, x, y, z, r, ops)
-                               : trace_layers(s, m, ray, x, y, z, r, ops);
+  const bool traced = donnelly ? trace_donnelly(s, m, ray, p, r, ops)
+                      : distance ? trace_spheres(s, m, ray, p, r, ops)
+                      : cone && s.cones == core::ConeKind::Relaxed ? trace_relaxed_cones(s, m, ray, p, r, ops)
+                      : cone   ? trace_cones(s, m, ray, p, r, ops)
+                               : trace_layers(s, m, ray, p, r, ops);
   if (!traced) return r;  // overflowed (float16): counted; the entry kept
   if (!s.early_exit && (distance || cone) && !donnelly) {
     // A fixed-length loop: the iterations after the hit still read the map (and find
@@ -405,10 +473,10 @@ ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, f
     const int idle = s.max_iterations - std::min(s.max_iterations, r.iterations);
     r.iterations += idle, r.fetches += idle;
     if (ops) *ops += (cone ? kOpsCone : kOpsSphere) * uint64_t(idle);
+    count_discarded<T>((cone ? kOpsCone : kOpsSphere) * uint64_t(idle));
   }
-  if (!finite(x) || !finite(y)) return r;  // overflowed (float16): counted; the entry kept
-  r.x = float(x), r.y = float(y);
-  if (ops) *ops += kOpsOut;
+  if (!finite(p.x) || !finite(p.y)) return r;  // overflowed (float16): counted; the entry kept
+  r.x = float(p.x), r.y = float(p.y);
   return r;
 }
 
@@ -416,7 +484,7 @@ ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, f
 
 ParallaxTrace trace_parallax(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0, float y0, float a,
                              float b, float c, Ops* ops, NumberContext* numbers, MapReads* reads) {
-  if (!numbers || numbers->format.kind == core::NumberFormat::Kind::Float32)
+  if (!numbers || (numbers->format.kind == core::NumberFormat::Kind::Float32 && !count_float32_operations))
     return trace_as<float>(s, m, x0, y0, a, b, c, ops, reads);  // straight: one call a pixel
   ParallaxTrace r;
   with_number_type(*numbers, [&](auto zero) { r = trace_as<decltype(zero)>(s, m, x0, y0, a, b, c, ops, reads); });
@@ -545,7 +613,11 @@ void ParallaxKernel::process(SpanPacket& p) {
     iterations += uint64_t(r.iterations);
     work_[i] = uint16_t(std::min<int64_t>(parallax_cycles(r, cell_cycles_), 65535));
   }
-  ops_ += Ops{/*add*/ 5, /*mul*/ 5} * uint64_t(p.count);  // uv and the tangent-space eye vector, per pixel
+  // Per pixel, in float32 (declared by hand, not run on a counting type): uv and the
+  // tangent-space eye vector (5 add, 5 mul); the entry in texels, u·W − ½ and
+  // (1 − v)·H − ½ (3 add, 2 mul), wrapped into the first tile (x − W·⌊x·(1/W)⌋: 2 add,
+  // 4 mul); the hit back to uv, u + (x − x₀)·(1/W) (4 add, 2 mul).
+  ops_ += Ops{/*add*/ 14, /*mul*/ 13} * uint64_t(p.count);
   if (p.count > 0) ops_ += Ops{/*add*/ 10, /*mul*/ 10};   // five plane seeds
   nonfinite_ += count_nonfinite(p.uvp, p.count);
   iterations_ += iterations;

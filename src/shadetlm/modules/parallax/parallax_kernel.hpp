@@ -74,6 +74,10 @@ inline int64_t parallax_cycles(const ParallaxTrace& r, int64_t cell_cycles) {
   const int64_t plain = int64_t(r.iterations) - r.cells - r.trilinear;
   return std::max<int64_t>(1, plain + 2 * int64_t(r.trilinear) + int64_t(r.cells) * cell_cycles);
 }
+// The operations of one exact cell test, declared by hand: the test (core::march_cells,
+// shared with the map builders) runs in float32 whatever the tracer's format, so a
+// counting type does not see it (the tracer's operation check adds this a cell).
+inline constexpr Ops kParallaxOpsCell{/*add*/ 16, /*mul*/ 18, /*div*/ 2, /*sqrt*/ 1, 0, 0, /*fetch*/ 4};
 // The cycles of an exact cell test under the pipeline's settings: 18 mul, 2 div, a square
 // root and four texels on one divider and one square-root unit (the divider twice).
 int64_t parallax_cell_cycles(const PipelineSettings::Units& units);
