@@ -831,48 +831,51 @@ TEST_CASE("the tracers' declared operation counts are what their code counts", "
                             {M::Distance, core::DistanceMap::Donnelly, {}},
                             {M::Cone, {}, core::ConeKind::Classic},
                             {M::Cone, {}, core::ConeKind::Relaxed}};
+  // The limits' edges too: a cap that cuts most traces short, no bisections, one layer.
+  struct Limits {
+    int max_iterations, binary_steps, layers_min, layers_max;
+  };
+  const core::ParallaxSettings defaults;
+  const Limits limits[] = {{64, defaults.binary_steps, defaults.layers_min, defaults.layers_max},
+                           {8, defaults.binary_steps, defaults.layers_min, defaults.layers_max},
+                           {64, 0, 1, 1}};
   uint64_t traces = 0, cells = 0;
   for (const core::Texture& map : {steps_map(), noise_map()})
     for (const Tracer& tr : tracers)
-      for (bool early_exit : {true, false}) {
-        core::ParallaxSettings s = settings(tr.method, tr.map);
-        s.cones = tr.cones, s.early_exit = early_exit, s.max_iterations = 64;
-        const modules::ParallaxMaps maps = modules::build_parallax_maps(map, s, "map");
-        for (double elevation : {60.0, 30.0, 15.0, 5.0}) {
-          const View v = view(elevation, 12);
-          for (const glm::dvec2& e : v.entries) {
-            const float x = float(e.x * 64 - 0.5), y = float((1 - e.y) * 64 - 0.5);
-            const float a = float(v.d.x), b = float(v.d.y), c = float(v.d.z);
-            modules::Ops plain, declared;
-            const modules::ParallaxTrace t = modules::trace_parallax(s, maps, x, y, a, b, c, &plain);
-            modules::NumberContext numbers;
-            modules::count_float32_operations = true;
-            const modules::ParallaxTrace k = modules::trace_parallax(s, maps, x, y, a, b, c, &declared, &numbers);
-            modules::count_float32_operations = false;
-            const modules::Ops counted = numbers.events.counted + modules::kParallaxOpsCell * uint64_t(k.cells);
-            INFO(core::to_string(tr.method) << " " << core::to_string(tr.map) << " " << core::to_string(tr.cones)
-                                            << (early_exit ? " early exit" : " fixed length") << " at " << elevation
-                                            << "°: declared-counted add " << int64_t(declared.add - counted.add)
-                                            << " mul " << int64_t(declared.mul - counted.mul) << " div "
-                                            << int64_t(declared.div - counted.div) << " sqrt "
-                                            << int64_t(declared.sqrt - counted.sqrt) << " rsqrt "
-                                            << int64_t(declared.rsqrt - counted.rsqrt) << " iterations "
-                                            << k.iterations << " cells " << k.cells);
-            REQUIRE(k.x == t.x);  // the counting type computes the same float32
-            REQUIRE(k.y == t.y);
-            REQUIRE(k.iterations == t.iterations);
-            REQUIRE(plain == declared);
-            CHECK(declared.add == counted.add);
-            CHECK(declared.mul == counted.mul);
-            CHECK(declared.div == counted.div);
-            CHECK(declared.sqrt == counted.sqrt);
-            CHECK(declared.rsqrt == counted.rsqrt);
-            CHECK(declared.lut == counted.lut);
-            CHECK(declared.fetch == uint64_t(k.fetches));  // texels read, as the trace tallies them
-            ++traces, cells += uint64_t(k.cells);
+      for (const Limits& l : limits)
+        for (bool early_exit : {true, false}) {
+          core::ParallaxSettings s = settings(tr.method, tr.map);
+          s.cones = tr.cones, s.early_exit = early_exit, s.max_iterations = l.max_iterations;
+          s.binary_steps = l.binary_steps, s.layers_min = l.layers_min, s.layers_max = l.layers_max;
+          const modules::ParallaxMaps maps = modules::build_parallax_maps(map, s, "map");
+          for (double elevation : {60.0, 30.0, 15.0, 5.0}) {
+            const View v = view(elevation, 12);
+            for (const glm::dvec2& e : v.entries) {
+              const float x = float(e.x * 64 - 0.5), y = float((1 - e.y) * 64 - 0.5);
+              const float a = float(v.d.x), b = float(v.d.y), c = float(v.d.z);
+              modules::Ops plain, declared;
+              const modules::ParallaxTrace t = modules::trace_parallax(s, maps, x, y, a, b, c, &plain);
+              modules::NumberContext numbers;
+              modules::count_float32_operations = true;
+              const modules::ParallaxTrace k = modules::trace_parallax(s, maps, x, y, a, b, c, &declared, &numbers);
+              modules::count_float32_operations = false;
+              const modules::Ops counted = numbers.events.counted + modules::kParallaxOpsCell * uint64_t(k.cells);
+              INFO(core::to_string(tr.method) << " " << core::to_string(tr.map) << " " << core::to_string(tr.cones)
+                                              << (early_exit ? " early exit" : " fixed length") << " cap "
+                                              << l.max_iterations << " bisections " << l.binary_steps << " layers "
+                                              << l.layers_min << "-" << l.layers_max << " at " << elevation << "°: "
+                                              << test::arithmetic_diff(declared, counted) << " iterations "
+                                              << k.iterations << " cells " << k.cells);
+              REQUIRE(k.x == t.x);  // the counting type computes the same float32
+              REQUIRE(k.y == t.y);
+              REQUIRE(k.iterations == t.iterations);
+              REQUIRE(plain == declared);
+              CHECK(test::same_arithmetic(declared, counted));
+              CHECK(declared.fetch == uint64_t(k.fetches));  // texels read, as the trace tallies them
+              ++traces, cells += uint64_t(k.cells);
+            }
           }
         }
-      }
   INFO(traces << " traces, " << cells << " cell tests");
   CHECK(cells > 0);
 }

@@ -231,16 +231,6 @@ TEST_CASE("the texture unit's declared operation counts are what its code counts
   std::uniform_real_distribution<float> position(-2.0f, 3.0f), exponent(-5.0f, 0.5f), coin(0.0f, 1.0f);
   // A derivative: 0 now and then, else ±10^e per pixel step (up to ~3 textures a pixel).
   auto derivative = [&] { return coin(rng) < 0.1f ? 0.0f : (coin(rng) < 0.5f ? -1 : 1) * std::pow(10.0f, exponent(rng)); };
-  auto same_counts = [](const modules::Ops& declared, const modules::Ops& counted) {
-    return declared.add == counted.add && declared.mul == counted.mul && declared.div == counted.div &&
-           declared.sqrt == counted.sqrt && declared.rsqrt == counted.rsqrt && declared.lut == counted.lut;
-  };
-  auto diff = [](const modules::Ops& d, const modules::Ops& k) {
-    std::ostringstream s;
-    s << "declared-counted add " << int64_t(d.add - k.add) << " mul " << int64_t(d.mul - k.mul) << " div "
-      << int64_t(d.div - k.div) << " sqrt " << int64_t(d.sqrt - k.sqrt) << " lut " << int64_t(d.lut - k.lut);
-    return s.str();
-  };
   for (core::Wrap wrap : {core::Wrap::Repeat, core::Wrap::Clamp}) {
     core::Texture base = core::make_value_noise(pp);
     base.wrap = wrap;
@@ -262,8 +252,8 @@ TEST_CASE("the texture unit's declared operation counts are what its code counts
         float expected[3];
         plain.sample(map, u, v, d[0], d[1], d[2], d[3], expected, plain_ops);
         INFO("sample " << i << " uv " << u << ' ' << v << " d " << d[0] << ' ' << d[1] << ' ' << d[2] << ' ' << d[3]
-                       << ": " << diff(declared, C::ops));
-        REQUIRE(same_counts(declared, C::ops));
+                       << ": " << test::arithmetic_diff(declared, C::ops));
+        REQUIRE(test::same_arithmetic(declared, C::ops));
         REQUIRE(declared == plain_ops);
         for (int c = 0; c < 3; ++c) REQUIRE(std::memcmp(&out[c].v, &expected[c], sizeof(float)) == 0);
       }
@@ -282,8 +272,8 @@ TEST_CASE("the texture unit's declared operation counts are what its code counts
       C::ops = {};
       modules::sample_span<C>(t, p, map, counted, out, declared, range, cycles);
       modules::sample_span(t, p, map, plain, expected, plain_ops, range, cycles);
-      INFO("span: " << diff(declared, C::ops));
-      CHECK(same_counts(declared, C::ops));
+      INFO("span: " << test::arithmetic_diff(declared, C::ops));
+      CHECK(test::same_arithmetic(declared, C::ops));
       CHECK(declared == plain_ops);
       for (int c = 0; c < 3; ++c) CHECK(std::memcmp(out[c], expected[c], sizeof(float) * size_t(p.count)) == 0);
     }

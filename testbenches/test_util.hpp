@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the tests.
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include <catch2/catch.hpp>
@@ -9,10 +10,28 @@
 #include "shadetlm/core/input_error.hpp"
 #include "shadetlm/core/scene.hpp"
 #include "shadetlm/modules/pipeline/pipeline.hpp"
+#include "shadetlm/numeric/ops.hpp"
 
 using namespace shadetlm;  // core::, modules::, reference::
 
 namespace test {
+
+// Whether a declared operation tally's arithmetic is what a counting type counted
+// (fetches and memory lines are a block's own tally, checked apart).
+inline bool same_arithmetic(const modules::Ops& declared, const modules::Ops& counted) {
+  return declared.add == counted.add && declared.mul == counted.mul && declared.div == counted.div &&
+         declared.sqrt == counted.sqrt && declared.rsqrt == counted.rsqrt && declared.lut == counted.lut;
+}
+
+// "declared-counted add 0 mul 2 …", for a failed same_arithmetic's message.
+inline std::string arithmetic_diff(const modules::Ops& declared, const modules::Ops& counted) {
+  auto d = [](uint64_t a, uint64_t b) { return int64_t(a - b); };
+  std::ostringstream s;
+  s << "declared-counted add " << d(declared.add, counted.add) << " mul " << d(declared.mul, counted.mul)
+    << " div " << d(declared.div, counted.div) << " sqrt " << d(declared.sqrt, counted.sqrt) << " rsqrt "
+    << d(declared.rsqrt, counted.rsqrt) << " lut " << d(declared.lut, counted.lut);
+  return s.str();
+}
 
 inline std::string source_path(const std::string& relative) {
   return std::string(SHADETLM_SOURCE_DIR) + "/" + relative;

@@ -77,7 +77,9 @@ struct Counted {
   friend bool operator!=(Counted a, Counted b) { return a.v != b.v; }
   Counted& operator/=(Counted b) { return *this = *this / b; }
   // The integer part, wiring: found by a template's unqualified floor(x) after
-  // `using std::floor` (core's height and volume reads, run counted by the tracer's check).
+  // `using std::floor` (core's height and volume reads, run counted by the tracer's check;
+  // core knows no number formats). The modules' kernels call floor_op (number.hpp),
+  // which the formats overload too.
   friend Counted floor(Counted a) { return std::floor(a.v); }
 };
 
@@ -106,13 +108,26 @@ template <class T> void tally_counted(const Ops& o) { Counted<T>::ops += o; }
 template <class T> struct is_counted : std::false_type {};
 template <class U> struct is_counted<Counted<U>> : std::true_type {};
 // Operations the hardware does whose result the model need not compute (a select
-// discards it): tallied on a Counted type, nothing on the others.
-template <class T> void count_discarded(const Ops& o) {
-  if constexpr (is_counted<T>::value) T::ops += o;
+// discards it): tallied on a Counted type, nothing on the others. Only the arithmetic:
+// fetches and lines are a block's own tally, never the number type's.
+template <class T> void count_discarded(Ops o) {
+  if constexpr (is_counted<T>::value) {
+    o.fetch = o.line = 0;
+    T::ops += o;
+  }
 }
 
 // The value of a number of any of these types, as a plain T.
 template <class T> T value(T x) { return x; }
 template <class T> T value(Counted<T> x) { return x.v; }
+
+// x times a power of two (½, ¼): an exponent shift in hardware (a wire shift in fixed
+// point), not an operation. Every datapath follows this rule: a division by a texture's
+// power-of-two size, the tracers' midpoints and EWA's half-axes alike.
+template <class T>
+T shifted(T x, T power_of_two) {
+  if constexpr (is_counted<T>::value) return T(value(x) * value(power_of_two));
+  else return x * power_of_two;
+}
 
 }  // namespace shadetlm::modules

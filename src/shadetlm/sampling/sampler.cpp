@@ -15,7 +15,9 @@ namespace {
 
 // Texel coordinates (s, r) of (u, v) on a level of W × H texels, with the wrap mode
 // applied as in core::Texture: s, r end within one texel of [0, W) × [0, H). Dropping
-// whole periods and clamping are wiring (done on the value, not counted).
+// whole periods and clamping are wiring (done on the value, not counted): for
+// power-of-two sizes; another size's period would take a modulo unit, not counted either.
+// (u·W is counted as a product: a texture need not be a power of two wide.)
 // Inlined: it runs for every probe of every pixel.
 template <class T>
 [[gnu::always_inline]] inline void texel_coordinates(const core::Texture& t, T u, T v, T& s, T& r) {
@@ -54,11 +56,11 @@ template <class T> T over_probes(T x, float n) {
   }
 }
 
-// The level of detail of a squared footprint length, half its log2 (1 lut, 1 mul; below
-// one texel, level 0: log2 of 1), clamped to the chain.
+// The level of detail of a squared footprint length, half its log2 (1 lut; the half a
+// shift; below one texel, level 0: log2 of 1), clamped to the chain.
 template <class T> T lod_of(T squared, float last, Ops& ops) {
-  ops += Ops{0, /*mul*/ 1, 0, 0, 0, /*lut*/ 1};
-  const T l = T(0.5f) * log2_op(std::max(T(1.0f), squared));  // max(1, NaN) is 1: level 0
+  ops += Ops{0, 0, 0, 0, 0, /*lut*/ 1};
+  const T l = shifted(log2_op(std::max(T(1.0f), squared)), T(0.5f));  // max(1, NaN) is 1: level 0
   return std::isfinite(value(l)) ? std::min(l, T(last)) : T(last);
 }
 
@@ -69,10 +71,10 @@ constexpr Ops kOpsNearest{/*add*/ 3, /*mul*/ 2, 0, 0, 0, 0, /*fetch*/ 1};
 // Between two levels: the LOD's fraction (1 add), three lerps (3 mul, 6 add).
 constexpr Ops kOpsLevelBlend{/*add*/ 7, /*mul*/ 3};
 // EWA's ellipse, before its texels (besides the footprint's axes and the LOD): the
-// half-axes (4 mul), M (6 mul, 3 add), its eigenvalues (4 mul, 5 add, 1 sqrt), the
+// half-axes (shifts), M (6 mul, 3 add), its eigenvalues (2 mul, 5 add, 1 sqrt), the
 // widening (4 add), the level's scale (3 mul), the filter's +1 (2 add), M⁻¹ (2 mul,
 // 1 add, 3 div), the box (2 sqrt, 4 add), the centre's texel coordinates (2 mul, 3 add).
-constexpr Ops kOpsEwaSetup{/*add*/ 22, /*mul*/ 21, /*div*/ 3, /*sqrt*/ 3};
+constexpr Ops kOpsEwaSetup{/*add*/ 22, /*mul*/ 15, /*div*/ 3, /*sqrt*/ 3};
 // Per texel of its box: the radius test (2 add for the offsets, A ds² + B ds dr + C dr²:
 // 6 mul, 2 add); per texel inside: its weight (a table indexed by r²) and sum.
 constexpr Ops kOpsEwaTest{/*add*/ 4, /*mul*/ 6};
@@ -179,12 +181,13 @@ void Sampler::ewa(const MipMap& map, T u, T v, T ax, T ay, T bx, T by, T out[3],
   // derivatives (the pixel spans ±½ around its centre), in texel coordinates of level 0
   // (s right, r down: r runs against v). Its matrix M = J·Jᵀ (J the half-axes as
   // columns): the points x with xᵀ M⁻¹ x < 1.
-  ax *= 0.5f, bx *= 0.5f, ay *= -0.5f, by *= -0.5f;
+  const T half(0.5f), quarter(0.25f);
+  ax = shifted(ax, half), bx = shifted(bx, half), ay = -shifted(ay, half), by = -shifted(by, half);
   T p = ax * ax + bx * bx, q = ax * ay + bx * by, r = ay * ay + by * by;
   // The true axes are M's eigenvalues: major² = λ1, minor² = λ2. At most 16 : 1, by
   // widening (M + c·I) — else a long ellipse would read a very fine level.
   const T p_r = p - r;
-  const T mean = 0.5f * (p + r), dev = sqrt_op(0.25f * p_r * p_r + q * q);
+  const T mean = shifted(p + r, half), dev = sqrt_op(shifted(p_r * p_r, quarter) + q * q);
   const T major2 = mean + dev;
   T minor2 = mean - dev;
   constexpr float kMaxEccentricity2 = 16 * 16;  // (a power of two: multiplying by it is wiring)
@@ -292,6 +295,7 @@ template <class T>
 void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map, Sampler& sampler,
                  float out[3][kSpanMax], Ops& ops, ValueRange& uv_range, uint16_t cycles[kSpanMax],
                  float (*uv_lod)[kSpanMax], uint16_t* lines) {
+  if (p.count == 0) return;  // an empty span: no seeds computed, none counted
   const int dx = p.x0 - t.x_ref, dy = p.y - t.y_ref;
   const Plane &pu = t.uv[0], &pv = t.uv[1], &pw = t.inv_w;
   // The planes' seeds at the span's first pixel, as Plane::at computes them.
@@ -313,8 +317,7 @@ void sample_span(const TriangleSetup& t, const SpanPacket& p, const MipMap& map,
     for (int c = 0; c < 3; ++c) out[c][i] = value(value_out[c]);
     if (uv_lod) uv_lod[0][i] = value(u), uv_lod[1][i] = value(v), uv_lod[2][i] = sampler.last_lod();
   }
-  ops += kOpsSpanUvPerPixel * uint64_t(p.count);
-  if (p.count > 0) ops += kOpsSpanUvPerSpan;
+  ops += kOpsSpanUvPerPixel * uint64_t(p.count) + kOpsSpanUvPerSpan;
 }
 
 template void sample_span<float>(const TriangleSetup&, const SpanPacket&, const MipMap&, Sampler&,

@@ -67,11 +67,12 @@ constexpr Ops kOpsHeightRead = kOpsBilinear + Ops{/*add*/ 0, /*mul*/ 1};    // �
 constexpr Ops kOpsOffset = kOpsBilinear + Ops{/*add*/ 5, /*mul*/ 9, /*div*/ 1, /*sqrt*/ 1};
 // The layers' setup: cos θ = −c/|v|, the layer count n (1 add, 1 mul), the step D/n/−v̂z.
 constexpr Ops kOpsLayers{/*add*/ 3, /*mul*/ 4, /*div*/ 3, /*sqrt*/ 1};
-constexpr Ops kOpsLayer = kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 4};  // one layer down: i·step, p = p₀ + ·v̂
+constexpr Ops kOpsLayer = kOpsHeightRead + Ops{/*add*/ 3, /*mul*/ 4};  // one layer down: p = p₀ + (i·step)·v̂
 constexpr Ops kOpsPom{/*add*/ 7, /*mul*/ 2, /*div*/ 1};                 // the layers' line through the two heights
 constexpr Ops kOpsMidpoint = kOpsHeightRead + Ops{/*add*/ 3};           // a bisection: (p + q)·½ and its height
 constexpr Ops kOpsBisect{/*add*/ 1, /*mul*/ 1, /*div*/ 1};              // its step's run across: (qz − pz)/v̂z·|v̂xy|
-constexpr Ops kOpsSphere{/*add*/ 3, /*mul*/ 3, 0, 0, 0, 0, /*fetch*/ 1};  // p += d(p)·v̂
+constexpr Ops kOpsAdvance{/*add*/ 3, /*mul*/ 3};  // p += t·v̂ (after the exact cells' march, or a step not taken)
+constexpr Ops kOpsSphere = kOpsAdvance + Ops{0, 0, 0, 0, 0, 0, /*fetch*/ 1};  // p += d(p)·v̂, d read
 // Donnelly's step: a trilinear read (3 offsets by ½, 3 fractions, 7 lerps of 1 mul and 2
 // add, 8 voxels), then p += d·v̂; a step through the floor is put back on it.
 constexpr Ops kOpsTrilinearSphere{/*add*/ 3 + 3 + 14 + 3, /*mul*/ 7 + 3, 0, 0, 0, 0, /*fetch*/ 8};
@@ -79,14 +80,6 @@ constexpr Ops kOpsFloor{/*add*/ 2, /*mul*/ 2, /*div*/ 1};
 constexpr Ops kOpsAcross{/*add*/ 1, /*mul*/ 2, 0, /*sqrt*/ 1};                 // |v̂xy|, once a ray (cones)
 constexpr Ops kOpsConeStep{/*add*/ 5, /*mul*/ 3, /*div*/ 2};       // to the cone's side, and p += t·v̂
 constexpr Ops kOpsCone = kOpsConeStep + Ops{0, 0, 0, 0, 0, 0, /*fetch*/ 1};  // … with its cell's read
-constexpr Ops kOpsAdvance{/*add*/ 3, /*mul*/ 3};  // p += t·v̂, after the exact cells' march
-
-// x times a power of two (½): an exponent shift in hardware, not counted.
-template <class T>
-T shifted(T x, T power_of_two) {
-  if constexpr (is_counted<T>::value) return T(value(x) * value(power_of_two));
-  else return x * power_of_two;
-}
 
 // Whether a value of the tracer is finite (float16 overflows to infinity; the value
 // must not reach a texel index). In float32 the tracer's values stay far below the
@@ -180,9 +173,15 @@ bool make_ray(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0f,
   if (ops) *ops += kOpsRay;
   Point<T> d{ray.a * ray.W, -ray.b * ray.H, ray.c * ray.D / T(float(s.depth))};
   const T length2 = d.x * d.x + d.y * d.y + d.z * d.z;
-  if (!(length2 > zero)) return false;  // no direction (before a reciprocal of 0)
+  if (!(length2 > zero)) {  // no direction (before a reciprocal of 0): the rest not done here
+    count_discarded<T>(Ops{0, /*mul*/ 3, /*div*/ 1, /*sqrt*/ 1});
+    return false;
+  }
   const T scale = one / sqrt_op(length2);
-  if (!std::isfinite(float(scale)) || scale == zero) return false;
+  if (!std::isfinite(float(scale)) || scale == zero) {
+    count_discarded<T>(Ops{0, /*mul*/ 3});  // the scaling not done here
+    return false;
+  }
   d = {d.x * scale, d.y * scale, d.z * scale};  // unit in the tracer's space
   // A ray this close to the surface would run over 10⁶ texels: treated as parallel.
   if (-d.z < T(1e-6f) || !(d.z < zero)) return false;
@@ -227,21 +226,32 @@ void pom_finish(const ParallaxMaps& m, const Ray<T>& ray, Point<T> above, T abov
   if (ops) *ops += kOpsPom;
 }
 
-// Bisections on the sign of z − D·h (a height read each) between `above`, over the
-// relief, and `under`, at or under it: `steps` at most, or (steps < 0) until the step is
-// at most a texel across (`run` texels now), within the iteration cap.
+// One bisection between `above`, over the relief, and `under`, at or under it: the
+// midpoint's height read (z − D·h's sign) says which half holds the hit.
 template <class T>
-void bisect(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, int steps, T run,
-            Point<T>& above, Point<T>& under, ParallaxTrace& r, Ops* ops) {
-  const T half = T(0.5f);
-  for (int i = 0; (steps < 0 ? run > T(1.0f) : i < steps) && r.iterations < s.max_iterations; ++i) {
-    const Point<T> mid = midpoint(above, under);
-    const T h = ray.D * height_at(m.field, mid.x, mid.y, ray.reads);
-    ++r.iterations, r.fetches += 4;
-    if (ops) *ops += kOpsMidpoint;
-    (mid.z <= h ? under : above) = mid;
-    run = shifted(run, half);
-  }
+void bisect_once(const ParallaxMaps& m, const Ray<T>& ray, Point<T>& above, Point<T>& under, ParallaxTrace& r,
+                 Ops* ops) {
+  const Point<T> mid = midpoint(above, under);
+  const T h = ray.D * height_at(m.field, mid.x, mid.y, ray.reads);
+  ++r.iterations, r.fetches += 4;
+  if (ops) *ops += kOpsMidpoint;
+  (mid.z <= h ? under : above) = mid;
+}
+
+// Relief's finish: binary_steps bisections, within the iteration cap.
+template <class T>
+void bisect_steps(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, Point<T>& above,
+                  Point<T>& under, ParallaxTrace& r, Ops* ops) {
+  for (int i = 0; i < s.binary_steps && r.iterations < s.max_iterations; ++i) bisect_once(m, ray, above, under, r, ops);
+}
+
+// Relaxed cones' search: bisections until the step is at most a texel across (`run`
+// texels now, halved each time: a shift), within the iteration cap.
+template <class T>
+void bisect_to_texel(const core::ParallaxSettings& s, const ParallaxMaps& m, const Ray<T>& ray, T run,
+                     Point<T>& above, Point<T>& under, ParallaxTrace& r, Ops* ops) {
+  for (; run > T(1.0f) && r.iterations < s.max_iterations; run = shifted(run, T(0.5f)))
+    bisect_once(m, ray, above, under, r, ops);
 }
 
 // Steep parallax, POM and relief: the layer search, then each one's finish. False if
@@ -275,7 +285,7 @@ bool trace_layers(const core::ParallaxSettings& s, const ParallaxMaps& m, const 
     count_discarded<T>(kOpsLayer * uint64_t(idle));  // done in hardware, their results not needed
   }
   if (p.z <= h && s.method == core::ParallaxMethod::Pom) pom_finish(m, ray, above, above_h, h, p, r, ops);
-  if (p.z <= h && s.method == core::ParallaxMethod::Relief) bisect(s, m, ray, s.binary_steps, T(0.0f), above, p, r, ops);
+  if (p.z <= h && s.method == core::ParallaxMethod::Relief) bisect_steps(s, m, ray, above, p, r, ops);
   return true;
 }
 
@@ -292,7 +302,7 @@ bool trace_spheres(const core::ParallaxSettings& s, const ParallaxMaps& m, const
     ++r.iterations, ++r.fetches;
     if (ops) *ops += kOpsSphere;
     if (d < near) {
-      count_discarded<T>(kOpsSphere);  // the step not taken, done in hardware all the same
+      count_discarded<T>(kOpsAdvance);  // the step not taken, done in hardware all the same
       break;
     }
     p = advance(p, d, ray.d);
@@ -321,7 +331,7 @@ bool trace_donnelly(const core::ParallaxSettings& s, const ParallaxMaps& m, cons
     ++r.iterations, ++r.trilinear, r.fetches += 8;
     if (ops) *ops += kOpsTrilinearSphere;
     if (s.early_exit && d < converged) {
-      count_discarded<T>(kOpsSphere);
+      count_discarded<T>(kOpsAdvance);  // the step not taken
       break;
     }
     p = advance(p, d, ray.d);
@@ -407,13 +417,13 @@ bool trace_relaxed_cones(const core::ParallaxSettings& s, const ParallaxMaps& m,
                          ParallaxTrace& r, Ops* ops) {
   const T across = run_across(ray, ops), down = -ray.d.z;
   Point<T> start = p;  // where the last step began: above the relief
-  bool above = true;   // p is known to be above the relief (the entry is)
+  bool known_above = true;  // p is known to be above the relief (the entry is)
   while (r.iterations < s.max_iterations) {
     if (!finite(p.x) || !finite(p.y)) return false;
     T apex, ratio;
     read_cone(m, ray, p, apex, ratio, r, ops);
-    if (p.z > apex) above = true;  // over the cell's box top
-    if (!above) {                  // at or under it after a step: one height read tells
+    if (p.z > apex) known_above = true;  // over the cell's box top
+    if (!known_above) {                  // at or under it after a step: one height read tells
       if (r.iterations >= s.max_iterations) {
         count_discarded<T>(kOpsConeStep);  // the iteration's step, not taken
         break;
@@ -421,12 +431,12 @@ bool trace_relaxed_cones(const core::ParallaxSettings& s, const ParallaxMaps& m,
       if (p.z <= slices_under(m, ray, p, r, ops)) {  // under: the hit is in the step from start, search it
         if (ops) *ops += kOpsBisect;
         const T run = (p.z - start.z) / ray.d.z * across;  // the step's length across, texels
-        bisect(s, m, ray, -1, run, start, p, r, ops);
-        p = start, above = true;             // above the relief, the hit within a texel or so on
+        bisect_to_texel(s, m, ray, run, start, p, r, ops);
+        p = start, known_above = true;       // above the relief, the hit within a texel or so on
         count_discarded<T>(kOpsConeStep);  // the iteration's step, not taken
         break;
       }
-      above = true;
+      known_above = true;
     }
     const T t = cone_step(p.z - apex, ratio, down, across);
     if (t < T(kParallaxNear)) {
@@ -435,17 +445,17 @@ bool trace_relaxed_cones(const core::ParallaxSettings& s, const ParallaxMaps& m,
     }
     start = p;
     p = advance(p, t, ray.d);
-    ++r.skips, above = false;
+    ++r.skips, known_above = false;
   }
   // The cap came before the last step's end was checked: it may be under the relief, past
   // the hit; the trace stops where that step began instead, before the hit.
-  if (!above) p = start;
+  if (!known_above) p = start;
   if (r.iterations < s.max_iterations) finish_cells(s, m, ray, p, r, ops);
   return true;
 }
 
 // The tracer in the number type T (pipeline.parallax.format): the ray, one of the
-// tracers, and the uv out.
+// tracers; the hit in texels (the block takes it back to uv).
 template <class T>
 ParallaxTrace trace_as(const core::ParallaxSettings& s, const ParallaxMaps& m, float x0f, float y0f, float af,
                        float bf, float cf, Ops* ops, MapReads* reads) {
@@ -616,7 +626,10 @@ void ParallaxKernel::process(SpanPacket& p) {
   // Per pixel, in float32 (declared by hand, not run on a counting type): uv and the
   // tangent-space eye vector (5 add, 5 mul); the entry in texels, u·W − ½ and
   // (1 − v)·H − ½ (3 add, 2 mul), wrapped into the first tile (x − W·⌊x·(1/W)⌋: 2 add,
-  // 4 mul); the hit back to uv, u + (x − x₀)·(1/W) (4 add, 2 mul).
+  // 4 mul); the hit back to uv, u + (x − x₀)·(1/W) (4 add, 2 mul). 1/W and 1/H are the
+  // map's constants, so hardware multiplies; the model divides, a rounding apart.
+  // (With the five plane seeds per packet below, these are the block's own operations,
+  // outside the tracer's.)
   ops_ += Ops{/*add*/ 14, /*mul*/ 13} * uint64_t(p.count);
   if (p.count > 0) ops_ += Ops{/*add*/ 10, /*mul*/ 10};   // five plane seeds
   nonfinite_ += count_nonfinite(p.uvp, p.count);
