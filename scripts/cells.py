@@ -9,14 +9,21 @@ and the power and energy a pixel at the model's clock and at fmax, with the inpu
 switching activity measured on golden/sphere's test vectors (curved: its normals change
 from pixel to pixel, where the long-spans scene's flat ones hardly toggle a bit).
 
-Usage: scripts/cells.py [--quick] [--doc] [--formats "fixed:I.F ..."] [--modes "m ..."]
+Usage: scripts/cells.py [--quick] [--doc] [--fresh] [--jobs N] [--formats "fixed:I.F ..."] [--modes "m ..."]
        scripts/cells.py --check      one operator through the whole flow (the ctest cells_flow)
   --quick  rsqrt0 and exact at fixed:1.12 (a few minutes on 2 cores; the whole table is
-           longer: ABC's mapping of the dividers and square roots grows with the width)
-  --doc    the table into docs/rtl.md between its <!-- cells:1 --> markers
+           longer: ABC's mapping of the dividers and square roots grows with the width,
+           forward-difference at fixed:1.12 took 40 minutes)
+  --doc    the tables into docs/rtl.md between its <!-- cells:N --> markers
+  --fresh  forget the rows of earlier runs (by default a run's rows join those in
+           out/cells/cells.json measured on the same RTL and library, so configurations
+           can be synthesized one at a time; rows of other RTL are dropped, and said so)
+  --jobs N configurations synthesized at once (default: the cores; each can take GBs)
+  --saved  synthesize nothing: the table of the rows in out/cells/cells.json
 Environment: SHADETLM (the program), SHADETLM_LIBERTY (another Liberty file).
 Exit 2, naming the Debian package that installs it, when a tool or the library is missing;
 2 on bad arguments."""
+import hashlib
 import json
 import math
 import os
@@ -178,7 +185,18 @@ def table(rows):
         lines.append(f"| {r['mode']} | `{r['format']}` | {r['cells']} | {r['flops']} | {r['area_um2'] / 1e6:.3f} |"
                      f" {r['period_ns']:.2f} | {r['fmax_mhz']:.1f} | {r['stages_500']} / {r['latency']} |"
                      f" {r['activity']:.3f} | {r['power_mw']:.2f} | {r['energy_pj']:.1f} | {r['power_fmax_mw']:.3f} |")
-    return "\n".join(lines) + "\n"
+    return "\n".join(lines) + "\n\n" + verdict(rows) + "\n"
+
+
+def verdict(rows):
+    """Which configurations a retiming could bring to the model's clock within the
+    latency the model declares for them."""
+    lines = [f"| mode | format | stages for {CLOCK_MHZ} MHz | declared latency | within it, once retimed |",
+             "|---|---|---:|---:|---|"]
+    for r in rows:
+        fits = "yes" if r["stages_500"] <= r["latency"] else "**no**"
+        lines.append(f"| {r['mode']} | `{r['format']}` | {r['stages_500']} | {r['latency']} | {fits} |")
+    return "\n".join(lines)
 
 
 def check():
@@ -216,8 +234,38 @@ def check():
           f"{period:.3f} ns ({1000 / period:.0f} MHz), {slow * 1e3:.3f} mW at 100 MHz, {fast * 1e3:.3f} mW at 200 MHz")
 
 
+def fingerprint():
+    """What a row was measured on: the RTL's sources and the cell library (sha256)."""
+    h = hashlib.sha256()
+    for path in sorted(RTL.glob("*.sv")) + [RTL / "modes.txt", pathlib.Path(LIBERTY)]:
+        h.update(path.name.encode() + b"\0" + path.read_bytes())
+    return h.hexdigest()[:16]
+
+
+def merged(earlier_path, rows, stamp):
+    """This run's rows and the earlier ones of the same fingerprint, one a configuration
+    (this run's where both have it), ordered by format, then mode."""
+    kept = {}
+    try:
+        earlier = json.loads(earlier_path.read_text()) if earlier_path.exists() else []
+    except ValueError:
+        print(f"cells.py: {earlier_path}: not JSON, its rows are dropped", file=sys.stderr)
+        earlier = []
+    for r in earlier:
+        if r.get("rtl") == stamp:
+            kept[(r["format"], r["mode"])] = r
+        else:
+            print(f"cells.py: {earlier_path}: {r.get('mode')} at {r.get('format')} dropped: measured on other "
+                  f"RTL or another library (fingerprint {r.get('rtl')}, now {stamp})", file=sys.stderr)
+    for r in rows:
+        kept[(r["format"], r["mode"])] = r
+    order = lambda key: (key[0], MODES.index(key[1]))
+    return [kept[k] for k in sorted(kept, key=order)]
+
+
 def main(argv):
-    formats, modes, doc = ["fixed:1.12", "fixed:3.16"], MODES, False
+    formats, modes, doc, fresh, saved = ["fixed:1.12", "fixed:3.16"], MODES, False, False, False
+    jobs = os.cpu_count() or 1
     args = list(argv)
     while args:
         a = args.pop(0)
@@ -228,6 +276,14 @@ def main(argv):
             formats, modes = ["fixed:1.12"], ["rsqrt0", "exact"]
         elif a == "--doc":
             doc = True
+        elif a == "--saved":
+            saved = True
+        elif a == "--fresh":
+            fresh = True
+        elif a == "--jobs" and args and args[0].isdigit() and int(args[0]) > 0:
+            jobs = int(args.pop(0))
+        elif a == "--jobs":
+            fail("--jobs: a positive whole number of configurations at once")
         elif a in ("--formats", "--modes") and args:
             value = args.pop(0).split()
             if a == "--formats":
@@ -242,26 +298,46 @@ def main(argv):
     for m in modes:
         if m not in MODES:
             fail(f"{m}: unknown mode (one of {', '.join(MODES)})")
+    if saved:
+        return write_table(None, doc)
     tools()
     binary = os.environ.get("SHADETLM", str(ROOT / "build/app/shadetlm"))
     if not os.access(binary, os.X_OK):
         fail(f"{binary}: no program (scripts/build.sh builds it)")
     with tempfile.TemporaryDirectory(prefix="cells-") as tmp:
         overhead = register_overhead(pathlib.Path(tmp))
-    jobs = [(m, f) for f in formats for m in modes]
-    with ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
-        rows = list(pool.map(lambda job: configuration(binary, job[0], job[1], overhead), jobs))
+    stamp = fingerprint()
+    configurations = [(m, f) for f in formats for m in modes]
+    with ThreadPoolExecutor(max_workers=jobs) as pool:
+        rows = list(pool.map(lambda job: configuration(binary, job[0], job[1], overhead), configurations))
+    for r in rows:
+        r["rtl"] = stamp
     out = ROOT / "out/cells"
     out.mkdir(parents=True, exist_ok=True)
-    (out / "cells.json").write_text(json.dumps(rows, indent=1) + "\n")
+    if not fresh:
+        rows = merged(out / "cells.json", rows, stamp)
+    # Written whole, then renamed: a kill leaves the earlier rows, never half a file.
+    (out / "cells.json.tmp").write_text(json.dumps(rows, indent=1) + "\n")
+    os.replace(out / "cells.json.tmp", out / "cells.json")
     print(f"Register overhead (clock-to-Q + setup of DFFPOSX1): {overhead:.3f} ns; the model's clock {CLOCK_MHZ} MHz "
           f"({1000 / CLOCK_MHZ:.1f} ns).\n")
+    write_table(rows, doc)
+
+
+def write_table(rows, doc):
+    """The rows' table (the saved rows of the current RTL if rows is None), printed, in
+    out/cells/cells.txt, and with doc in docs/rtl.md."""
+    out = ROOT / "out/cells"
+    if rows is None:
+        if not (out / "cells.json").exists():
+            fail(f"{out / 'cells.json'}: no saved rows (a run without --saved makes them)")
+        rows = merged(out / "cells.json", [], fingerprint())
     text = table(rows)
     print(text, end="")
     (out / "cells.txt").write_text(text)
     if doc:
         subprocess.run([sys.executable, str(ROOT / "scripts/doc-tables.py"), str(out / "cells.txt"),
-                        str(ROOT / "docs/rtl.md"), "cells", "1"], check=True)
+                        str(ROOT / "docs/rtl.md"), "cells", "2"], check=True)
         print("docs/rtl.md updated")
 
 
