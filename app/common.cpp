@@ -233,9 +233,11 @@ void set_compression(const std::string& name) {
   try {
     core::set_exr_compression(name);
   } catch (const core::InputError& e) {
+    if (name.find(':') != std::string::npos) throw;  // (a method with a level: said whole)
     const std::string near = core::nearest_name(name, core::exr_compression_names());
     if (near.empty()) throw;
-    throw core::InputError("--compression", name, "unknown: did you mean '" + near + "'? (none, rle, zips, zip, piz)");
+    throw core::InputError("--compression", name,
+                           "unknown: did you mean '" + near + "'? (none, rle, zips, zip, piz, zip:L or zips:L with L 1-9)");
   }
 }
 

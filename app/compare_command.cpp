@@ -45,7 +45,9 @@ int run_compare(const Options& opt) {
     for (const auto& [file, frame] : {std::pair{opt.a, &a}, std::pair{opt.b, &b}})
       if (!frame->find("R") || !frame->find("G") || !frame->find("B"))
         throw core::InputError(file, "--images", "the frame has no R, G, B channels to draw");
-  const core::CompareResult r = core::compare_frames(a, b, opt.compare);
+  core::CompareOptions o = opt.compare;
+  o.threads = threads();
+  const core::CompareResult r = core::compare_frames(a, b, o);
   if (!r.problem.empty()) {  // not comparable: trouble, as a missing file is
     std::cerr << "shadetlm: compare " << opt.a << " " << opt.b << ": " << r.problem << "\n";
     return 2;

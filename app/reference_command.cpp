@@ -38,7 +38,7 @@ Command add_reference_command(CLI::App& app) {
             const reference::Image image = reference::render(scene, threads());
             const double seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            core::Frame frame = reference::to_frame(image);
+            core::Frame frame = reference::to_frame(image, threads());
             const uint64_t replaced = replace_nonfinite(frame);
             describe(frame, scene, opt->scene, "reference");
             progress.phase("writing");

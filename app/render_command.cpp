@@ -29,10 +29,11 @@ namespace {
 // covered in either frame, and frame-wide), the coverage, and the truth the model used.
 nlohmann::json error_against_reference(const core::Frame& frame, const core::Scene& scene, double* reference_s) {
   const auto start = std::chrono::steady_clock::now();
-  const core::Frame ref = reference::to_frame(reference::render(scene, threads()));
+  const core::Frame ref = reference::to_frame(reference::render(scene, threads()), threads());
   *reference_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   core::CompareOptions o;
   o.fail = 0;  // report, do not judge
+  o.threads = threads();
   const core::CompareResult r = core::compare_frames(frame, ref, o);
   nlohmann::json j;
   for (const auto& m : r.layers) {

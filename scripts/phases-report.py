@@ -21,7 +21,7 @@ import sys
 import tempfile
 import time
 
-COMPRESSIONS = ["none", "rle", "zips", "zip", "piz"]
+COMPRESSIONS = ["none", "rle", "zips:1", "zips", "zip:1", "zip", "zip:9", "piz"]
 
 
 def fail(message):

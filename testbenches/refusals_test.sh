@@ -128,7 +128,7 @@ check precompute-normalmap-png 0 "$bin" precompute normalmap h.png -o n.png
 # --- --threads and --compression: every lossless method writes a frame that reads back
 # as the same pixels, on one thread or several; bad counts and names refused (exit 2).
 check frame-default 0 "$bin" render "${small[@]}" -o c-default.exr --compare-reference
-for c in none rle zips zip piz; do
+for c in none rle zips zip piz zip:1 zips:9; do
   for t in 1 3; do
     check "compression-$c-threads-$t" 0 "$bin" --threads "$t" --compression "$c" render "${small[@]}" -o "c-$c.exr" \
       --compare-reference
@@ -137,6 +137,9 @@ for c in none rle zips zip piz; do
 done
 [[ $(stat -c %s c-none.exr) -gt $(stat -c %s c-zip.exr) ]] && ((passes++)) ||
   { echo "FAIL compression-zip-smaller: zip no smaller than none"; ((failures++)); }
+# zlib's level changes the file, not the pixels (checked above): level 1 is larger.
+[[ $(stat -c %s c-zip:1.exr) -gt $(stat -c %s c-zip.exr) ]] && ((passes++)) ||
+  { echo "FAIL compression-zip-level: zip:1 no larger than zip"; ((failures++)); }
 # Each method wrote its own kind of file: five sizes, all different.
 sizes=$(for c in none rle zips zip piz; do stat -c %s "c-$c.exr"; done | sort -u | wc -l)
 ((sizes == 5)) && ((passes++)) || { echo "FAIL compression-methods-differ: $sizes sizes for 5 methods"; ((failures++)); }
@@ -151,6 +154,11 @@ check compression-typo 2 "$bin" render "${small[@]}" -o bad.exr --compression pi
 says compression-typo-suggests "did you mean 'piz'"
 check compression-lossy 2 "$bin" render "${small[@]}" -o bad.exr --compression dwaa
 says compression-lossy-why "lossy"
+for bad in zip:0 zip:10 zip: zips:x rle:2 piz:1; do
+  check "compression-level-$bad" 2 "$bin" render "${small[@]}" -o bad.exr --compression "$bad"
+  says "compression-level-$bad-named" "--compression"
+  says "compression-level-$bad-why" "from 1 to 9"
+done
 check compression-unknown 2 "$bin" render "${small[@]}" -o bad.exr --compression brotli
 says compression-unknown-named "--compression"
 absent compression-nothing bad.exr

@@ -1,7 +1,9 @@
 // The golden model against closed forms: quads whose every pixel has an exact normal,
 // depth and Blinn-Phong colour computable here by hand, each within 1e-9.
 #include <cmath>
+#include <cstring>
 
+#include "shadetlm/core/compare.hpp"
 #include "shadetlm/reference/reference.hpp"
 #include "test_util.hpp"
 
@@ -195,5 +197,47 @@ TEST_CASE("the golden model draws the same image on any number of threads", "[re
       CHECK(many.normal == one.normal);
       CHECK(many.hit == one.hit);
     }
+  }
+}
+
+TEST_CASE("the golden model's frame and its comparison are the same on any number of threads", "[reference]") {
+  // to_frame converts a layer a thread, compare_frames measures a layer a thread: the
+  // frame and every figure must not depend on the count (parallax-steps has 11 layers).
+  for (const char* file : {"golden/parallax-steps/scene.json", "golden/demo/scene.json"}) {
+    const core::Scene scene = core::load_scene(test::source_path(file));
+    const reference::Image image = reference::render(scene, 1);
+    const core::Frame one = reference::to_frame(image, 1);
+    core::Frame other = one;  // a second frame that differs, so that every figure is non-trivial
+    for (float& v : other.at("R")) v *= 0.9f;
+    for (float& v : other.at("Z")) v += 0.01f;
+    core::CompareOptions o;
+    o.fail = 0;
+    const core::CompareResult alone = core::compare_frames(other, one, o);
+    for (int threads : {2, 3, 16}) {
+      INFO(file << " on " << threads << " threads");
+      const core::Frame many = reference::to_frame(image, threads);
+      REQUIRE(many.channels.size() == one.channels.size());
+      for (size_t k = 0; k < one.channels.size(); ++k) {
+        CHECK(many.channels[k].name == one.channels[k].name);
+        CHECK(std::memcmp(many.channels[k].values.data(), one.channels[k].values.data(),
+                          one.channels[k].values.size() * sizeof(float)) == 0);
+      }
+      o.threads = threads;
+      const core::CompareResult shared = core::compare_frames(other, one, o);
+      REQUIRE(shared.layers.size() == alone.layers.size());
+      CHECK(shared.pass == alone.pass);
+      for (size_t k = 0; k < alone.layers.size(); ++k) {
+        const core::LayerMetrics &a = alone.layers[k], &b = shared.layers[k];
+        CHECK(b.layer == a.layer);
+        CHECK(b.pixels == a.pixels);
+        CHECK(b.over == a.over);
+        CHECK(b.max_x == a.max_x);
+        CHECK(b.max_y == a.max_y);
+        CHECK(std::memcmp(&b.rmse, &a.rmse, sizeof(double)) == 0);  // bit for bit (NaN too)
+        CHECK(std::memcmp(&b.frame_rmse, &a.frame_rmse, sizeof(double)) == 0);
+        CHECK(std::memcmp(&b.max_abs, &a.max_abs, sizeof(double)) == 0);
+      }
+    }
+    CHECK(alone.layers.front().rmse > 0);  // (the figures compared above are not all 0)
   }
 }

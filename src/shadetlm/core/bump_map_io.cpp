@@ -18,7 +18,7 @@ void write_mip_chain(const std::string& path, const Texture& base, const std::ve
   write_atomically(path, [&](const std::string& tmp) {
     write_exr_stream(tmp, path, [&](Imf::OStream& stream) {
       Imf::Header header(base.width, base.height);
-      header.compression() = exr_compression_in_force();
+      compress_as_set(header);
       header.setTileDescription(Imf::TileDescription(64, 64, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
       for (const auto& [k, v] : attributes) header.insert(k, Imf::StringAttribute(v));
       const char* names[3] = {"R", "G", "B"};

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "shadetlm/core/parallel.hpp"
+
 namespace shadetlm::core {
 
 namespace {
@@ -121,6 +123,7 @@ CompareResult compare_frames(const Frame& a, const Frame& b, const CompareOption
   }
   std::vector<bool> covered;
   r.coverage = coverage_of(a, b, covered);
+  std::vector<std::pair<std::string, std::vector<std::string>>> measured;  // layers and their channels
   for (const auto& [layer, names] : layer_table()) {
     const bool asked = std::find(opt.layers.begin(), opt.layers.end(), layer) != opt.layers.end();
     // A frame may lack these unless they are asked for: A (the coverage), and the
@@ -141,10 +144,16 @@ CompareResult compare_frames(const Frame& a, const Frame& b, const CompareOption
       r.problem += (r.problem.empty() ? "" : "; ") + ("no " + layer + " layer in both frames");
     }
     if (chans.empty() || (!opt.layers.empty() && !asked)) continue;
-    LayerMetrics m = layer_metrics(a, b, layer, chans, covered, opt);
-    r.pass = r.pass && m.pass;
-    r.layers.push_back(m);
+    measured.emplace_back(layer, chans);
   }
+  // Each layer measured whole by one thread, in pixel order: the same sums for any count.
+  r.layers.resize(measured.size());
+  const int parts = std::max(1, std::min(threads_or_cores(opt.threads), int(measured.size())));
+  run_parts(parts, [&](int part) {
+    for (size_t k = size_t(part); k < measured.size(); k += size_t(parts))
+      r.layers[k] = layer_metrics(a, b, measured[k].first, measured[k].second, covered, opt);
+  });
+  for (const LayerMetrics& m : r.layers) r.pass = r.pass && m.pass;
   if (r.layers.empty() && r.problem.empty()) {
     r.pass = false;
     r.problem = "no layer (RGB, Z, N) in common";

@@ -29,6 +29,7 @@ struct CompareOptions {
   double fail = 1e-6;
   double fail_percent = 0;
   double hard_fail = std::numeric_limits<double>::infinity();
+  int threads = 1;  // the layers measured at once (0: one per core); the figures are the same for any count
 };
 
 struct LayerMetrics {

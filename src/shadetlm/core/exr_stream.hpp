@@ -6,13 +6,14 @@
 #include <functional>
 #include <string>
 
-#include <ImfCompression.h>
+#include <ImfHeader.h>
 #include <ImfIO.h>
 
 namespace shadetlm::core {
 
-// The compression set by set_exr_compression (core/frame.hpp; zip by default).
-Imf::Compression exr_compression_in_force();
+// Sets the header's compression and zlib level to those of set_exr_compression
+// (core/frame.hpp; zip at kDefaultZipLevel by default).
+void compress_as_set(Imf::Header& header);
 
 // Opens `file` (a temporary), calls write(stream) to put the EXR into it, and closes it;
 // any failure, in the writes, the offset table or the close, throws std::runtime_error

@@ -35,9 +35,11 @@ struct Frame {
 // ---- The io component (shadetlm::io, linked apart: file formats) from here on.
 // How EXR files are written, for the whole process (the --compression and --threads
 // options): OpenEXR's lossless compressions (none, rle, zips, zip, piz; a lossy name
-// or an unknown one is an InputError naming --compression), zip by default
-// (docs/performance.md); and the threads of OpenEXR's pool, which compress and
+// or an unknown one is an InputError naming --compression), zip:L and zips:L with
+// zlib's level L (1 fastest, 9 smallest), zip at kDefaultZipLevel by default
+// (docs/performance.md, "Writing frames"); and the threads of OpenEXR's pool, which compress and
 // decompress a file's blocks in parallel (1: none, on the calling thread).
+constexpr int kDefaultZipLevel = 4;  // (OpenEXR's own default)
 const std::vector<std::string>& exr_compression_names();
 void set_exr_compression(const std::string& name);
 void set_exr_threads(int threads);

@@ -38,6 +38,8 @@ constexpr Method kLossless[] = {{"none", Imf::NO_COMPRESSION},   {"rle", Imf::RL
                                 {"zips", Imf::ZIPS_COMPRESSION}, {"zip", Imf::ZIP_COMPRESSION},
                                 {"piz", Imf::PIZ_COMPRESSION}};
 Imf::Compression exr_compression = Imf::ZIP_COMPRESSION;
+int exr_zip_level = kDefaultZipLevel;  // zlib's level for zip and zips
+const char* const kNames = "none, rle, zips, zip, piz, or zip:L / zips:L with zlib's level L from 1 to 9";
 }  // namespace
 
 const std::vector<std::string>& exr_compression_names() {
@@ -50,14 +52,27 @@ const std::vector<std::string>& exr_compression_names() {
 }
 
 void set_exr_compression(const std::string& name) {
+  // "zip:L" and "zips:L": the method and zlib's level (OpenImageIO's spelling).
+  const size_t colon = name.find(':');
+  const std::string method = name.substr(0, colon);
+  int level = kDefaultZipLevel;
+  if (colon != std::string::npos) {
+    const std::string digits = name.substr(colon + 1);
+    if ((method != "zip" && method != "zips") || digits.size() != 1 || digits[0] < '1' || digits[0] > '9')
+      throw InputError("--compression", name, std::string("a level is zip:L or zips:L with L from 1 to 9 (") + kNames + ")");
+    level = digits[0] - '0';
+  }
   for (const Method& m : kLossless)
-    if (name == m.name) return void(exr_compression = m.compression);
+    if (method == m.name) {
+      exr_compression = m.compression, exr_zip_level = level;
+      return;
+    }
   for (const char* lossy : {"pxr24", "b44", "b44a", "dwaa", "dwab"})
     if (name == lossy)
       throw InputError("--compression", name,
                        "is lossy for 32-bit float channels (a frame read back would not be the model's): use none, "
                        "rle, zips, zip or piz");
-  throw InputError("--compression", name, "unknown: one of none, rle, zips, zip, piz (OpenEXR's lossless methods)");
+  throw InputError("--compression", name, std::string("unknown: one of ") + kNames + " (OpenEXR's lossless methods)");
 }
 
 void set_exr_threads(int threads) {
@@ -103,7 +118,10 @@ class FileStream : public Imf::OStream {
 };
 }  // namespace
 
-Imf::Compression exr_compression_in_force() { return exr_compression; }
+void compress_as_set(Imf::Header& header) {
+  header.compression() = exr_compression;
+  header.zipCompressionLevel() = exr_zip_level;
+}
 
 void write_exr_stream(const std::string& file, const std::string& output,
                       const std::function<void(Imf::OStream&)>& write) {
@@ -125,7 +143,7 @@ void write_exr_stream(const std::string& file, const std::string& output,
 void write_exr_to(const std::string& file, const std::string& output, const Frame& frame) {
   write_exr_stream(file, output, [&](Imf::OStream& stream) {
     Imf::Header header(frame.width, frame.height);
-    header.compression() = exr_compression;
+    compress_as_set(header);
     for (const auto& [k, v] : frame.attributes) header.insert(k, Imf::StringAttribute(v));
     Imf::FrameBuffer fb;
     for (const auto& c : frame.channels) {

@@ -2,14 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <system_error>
-#include <thread>
 #include <vector>
 
 #include "shadetlm/core/coverage.hpp"
-#include "shadetlm/core/output.hpp"
+#include "shadetlm/core/parallel.hpp"
 #include "shadetlm/reference/parallax.hpp"
 
 namespace shadetlm::reference {
@@ -403,41 +400,14 @@ Image render(const core::Scene& scene, int threads) {
   const View view = make_view(scene.camera);
   std::vector<core::Mesh> meshes;
   for (const core::Object& object : scene.objects) meshes.push_back(core::to_world(object));
-  const auto draw = [&](Rows rows) {
+  const int bands = (img.height + kBandRows - 1) / kBandRows;
+  const int parts = std::max(1, std::min(core::threads_or_cores(threads), bands));
+  core::run_parts(parts, [&](int part) {
+    const Rows rows{part, parts};
     for (int y = 0; y < img.height; ++y)
       if (rows.own(y)) clear_row(img, scene, y);
     for (size_t k = 0; k < scene.objects.size(); ++k) draw_object(scene, scene.objects[k], meshes[k], view, img, rows);
-  };
-  if (threads <= 0) threads = int(std::max(1u, std::thread::hardware_concurrency()));
-  const int bands = (img.height + kBandRows - 1) / kBandRows;
-  const int parts = std::max(1, std::min(threads, bands));
-  // Each part its own thread (the last on this one); a thread that cannot be had leaves
-  // its part to this thread after the others. Every error is kept, by part, and the
-  // first rethrown once every thread is joined.
-  std::vector<std::exception_ptr> errors(static_cast<size_t>(parts));
-  const auto draw_part = [&](int part) {
-    try {
-      draw({part, parts});
-    } catch (...) {
-      errors[size_t(part)] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> workers;
-  workers.reserve(size_t(parts));
-  std::vector<int> left_over;
-  for (int part = 0; part + 1 < parts; ++part) {
-    try {
-      core::SignalsHeld held;  // SIGINT and SIGTERM stay with the main thread
-      workers.emplace_back(draw_part, part);
-    } catch (const std::system_error&) {
-      left_over.push_back(part);
-    }
-  }
-  draw_part(parts - 1);
-  for (int part : left_over) draw_part(part);
-  for (auto& w : workers) w.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  });
   return img;
 }
 
@@ -451,24 +421,34 @@ std::map<std::string, std::string> truth(const core::Scene& scene) {
   return t;
 }
 
-core::Frame to_frame(const Image& img) {
+core::Frame to_frame(const Image& img, int threads) {
+  // A layer: its name and where its values stand in the image (every `stride` doubles).
+  struct Layer {
+    const char* name;
+    const double* values;
+    size_t stride;
+  };
+  static_assert(sizeof(glm::dvec3) == 3 * sizeof(double), "a dvec3 is three doubles");
+  const auto of = [](const Buffer<glm::dvec3>& b, int k) { return b.empty() ? nullptr : &b[0][k]; };
+  std::vector<Layer> layers = {{"R", of(img.color, 0), 3},      {"G", of(img.color, 1), 3},
+                               {"B", of(img.color, 2), 3},      {"A", img.alpha.data(), 1},
+                               {"Z", img.depth.data(), 1},      {"N.X", of(img.normal, 0), 3},
+                               {"N.Y", of(img.normal, 1), 3},   {"N.Z", of(img.normal, 2), 3}};
+  if (!img.hit.empty())
+    layers.insert(layers.end(), {{"parallax.u", of(img.hit, 0), 3}, {"parallax.v", of(img.hit, 1), 3},
+                                 {"parallax.height", of(img.hit, 2), 3}});
   core::Frame f(img.width, img.height);
-  const char* names[] = {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z"};
-  for (const char* n : names) f.add(n);  // all first: adding moves the channels
-  std::vector<float>* ch[8];
-  for (int k = 0; k < 8; ++k) ch[k] = &f.at(names[k]);
-  for (size_t i = 0; i < f.pixel_count(); ++i) {
-    for (int k = 0; k < 3; ++k) (*ch[k])[i] = float(img.color[i][k]);
-    (*ch[3])[i] = float(img.alpha[i]);
-    (*ch[4])[i] = float(img.depth[i]);
-    for (int k = 0; k < 3; ++k) (*ch[5 + k])[i] = float(img.normal[i][k]);
-  }
-  if (!img.hit.empty()) {
-    f.add("parallax.u"), f.add("parallax.v"), f.add("parallax.height");
-    std::vector<float>* hit[3] = {&f.at("parallax.u"), &f.at("parallax.v"), &f.at("parallax.height")};
-    for (size_t i = 0; i < f.pixel_count(); ++i)
-      for (int k = 0; k < 3; ++k) (*hit[k])[i] = float(img.hit[i][k]);
-  }
+  f.channels.resize(layers.size());
+  // Each layer converted whole by one thread, which first touches its pages (at 1080p
+  // the layers are 8 MB each).
+  const int parts = std::max(1, std::min(core::threads_or_cores(threads), int(layers.size())));
+  core::run_parts(parts, [&](int part) {
+    for (size_t k = size_t(part); k < layers.size(); k += size_t(parts)) {
+      std::vector<float> values(f.pixel_count());
+      for (size_t i = 0; i < values.size(); ++i) values[i] = float(layers[k].values[i * layers[k].stride]);
+      f.channels[k] = {layers[k].name, std::move(values)};
+    }
+  });
   return f;
 }
 

@@ -82,7 +82,9 @@ constexpr int kBandRows = 4;
 // parallax "height field". Other materials are absent: their truth is the shading model.
 std::map<std::string, std::string> truth(const core::Scene& scene);
 
-// The image as an EXR frame (float channels R, G, B, A, Z, N.X, N.Y, N.Z).
-core::Frame to_frame(const Image& image);
+// The image as an EXR frame (float channels R, G, B, A, Z, N.X, N.Y, N.Z, and
+// parallax.u, .v, .height where it has hits), its layers converted by `threads` (0: one
+// per core).
+core::Frame to_frame(const Image& image, int threads = 0);
 
 }  // namespace shadetlm::reference
