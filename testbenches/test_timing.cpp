@@ -57,6 +57,9 @@ TEST_CASE("MainPassTiming: the inspected sweep and the plain one count the same"
     // spelled: the same work, a uniform block's given per pixel (its lead on the first)
     modules::MainPassTiming inspected(blocks), plain(blocks), spelled(blocks);
     inspected.keep_times = true;
+    const uint64_t bin = uint64_t(pick(1, 60));  // (utilization over time: the same histogram)
+    for (size_t j = 0; j < blocks.size(); ++j)
+      for (auto* line : {&inspected, &plain, &spelled}) line->times(int(j)).bin_cycles = bin;
     std::vector<std::vector<uint16_t>> work(blocks.size(), std::vector<uint16_t>(modules::kSpanMax));
     std::vector<std::vector<uint16_t>> spelled_work = work;
     int64_t arrival = 0;
@@ -101,6 +104,77 @@ TEST_CASE("MainPassTiming: the inspected sweep and the plain one count the same"
       CHECK(a.fifo_cycles == b.fifo_cycles);
       CHECK(a.fifo_peak == b.fifo_peak);
       CHECK(a.last == b.last);
+      CHECK(a.busy_per_bin == b.busy_per_bin);
+      CHECK(c.busy_per_bin == b.busy_per_bin);
     }
   }
+}
+
+// The plain sweep's blocks that only delay (main_pass.hpp, "Blocks that only delay")
+// against the recurrence (inspected): random passes whose last blocks have II 1, FIFOs
+// of 2 or more and the same work (0 or 1) on every pixel, so that the plain sweep times
+// them as delays; in half the seeds one of them then takes other work mid-frame and the
+// recurrence takes over from the delays' state.
+TEST_CASE("MainPassTiming: blocks that only delay, timed as delays, count as the recurrence does", "[timing]") {
+  int delayed = 0, ended = 0;
+  for (uint32_t seed = 1; seed <= 300; ++seed) {
+    std::mt19937 rng(seed);
+    auto pick = [&](int lo, int hi) { return int(std::uniform_int_distribution<int>(lo, hi)(rng)); };
+    const size_t count = size_t(pick(2, 6)), suffix = size_t(pick(1, int(count) - 1));
+    std::vector<modules::Timing> blocks(count);
+    std::vector<uint32_t> kept(count);  // each delaying block's work on every pixel
+    for (size_t j = 0; j < count; ++j) {
+      const bool delays = j >= count - suffix;
+      blocks[j] = {uint64_t(pick(1, 40)), delays ? 1u : uint64_t(pick(1, 6)), uint64_t(delays ? pick(2, 16) : pick(1, 16))};
+      kept[j] = uint32_t(pick(0, 1));
+    }
+    modules::MainPassTiming inspected(blocks), plain(blocks);
+    inspected.keep_times = true;
+    const uint64_t bin = uint64_t(pick(1, 60));
+    for (size_t j = 0; j < count; ++j) inspected.times(int(j)).bin_cycles = plain.times(int(j)).bin_cycles = bin;
+    const bool change = seed % 2 == 0;
+    const size_t changed = count - suffix + size_t(pick(0, int(suffix) - 1));  // the block whose work changes
+    const size_t expected_from = change ? changed + 1 : count - suffix;
+    std::vector<std::vector<uint16_t>> work(count, std::vector<uint16_t>(modules::kSpanMax));
+    int64_t arrival = 0;
+    for (int packet = 0; packet < 80; ++packet) {
+      if (pick(0, 3) == 0) {
+        const int64_t taken = inspected.start_triangle(arrival);
+        REQUIRE(plain.start_triangle(arrival) == taken);
+        arrival = taken + pick(0, 30);
+      }
+      modules::SpanPacket p{};
+      p.count = pick(1, modules::kSpanMax);
+      for (size_t j = 1; j < count; ++j) {
+        modules::Work w{nullptr, uint32_t(pick(0, 3)), nullptr, uint32_t(pick(0, 1) ? pick(1, 5) : 0)};
+        if (j >= count - suffix) w = {nullptr, kept[j]};  // a delay: the same work, uniform or spelled per pixel
+        if (j >= count - suffix && pick(0, 1)) {
+          std::fill(work[j].begin(), work[j].end(), uint16_t(kept[j]));
+          w = {work[j].data(), 0};
+        }
+        if (change && packet == 40 && j == changed) w = {nullptr, kept[j] + 1};
+        inspected.set_work(int(j), w), plain.set_work(int(j), w);
+      }
+      const uint64_t hidden = uint64_t(pick(0, 5));
+      inspected.sweep(p, hidden), plain.sweep(p, hidden);
+    }
+    inspected.settle(), plain.settle();
+    INFO("seed " << seed);
+    CHECK(plain.delaying_from() == expected_from);  // the delays were taken (and ended where the work changed)
+    delayed += expected_from < count, ended += change;
+    CHECK(inspected.end() == plain.end());
+    for (size_t j = 0; j < count; ++j) {
+      const modules::BlockTimes &a = inspected.times(int(j)), &b = plain.times(int(j));
+      INFO("block " << j);
+      CHECK(a.busy == b.busy);
+      CHECK(a.starved == b.starved);
+      CHECK(a.blocked == b.blocked);
+      CHECK(a.fifo_cycles == b.fifo_cycles);
+      CHECK(a.fifo_peak == b.fifo_peak);
+      CHECK(a.last == b.last);
+      CHECK(a.busy_per_bin == b.busy_per_bin);
+    }
+  }
+  CHECK(delayed > 100);  // (most seeds end with some block still delaying)
+  CHECK(ended == 150);
 }

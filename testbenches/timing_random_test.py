@@ -5,7 +5,8 @@ tori of every shading path, point and directional lights), random FIFO depths (1
 IIs (1-6) and latencies of every block, the arithmetic units' latencies, normalize's
 modes and seeding, the memory model on and off, elaborate=all or as needed. Each must
 give the same start and hand-over cycle for every pixel at every block as the clocked
-reference (`shadetlm timing-check`). Deterministic: configuration k of seed S is the
+reference (`shadetlm timing-check`), and the same render without the log (the plain
+sweep, as users run it) the same statistics as the logged one. Deterministic: configuration k of seed S is the
 same on every machine; a failure prints the seed and the k that reproduce it alone
 (--seed S --only k).
 
@@ -127,8 +128,42 @@ def one(binary, folder, keys, seed, k):
     if not m:
         return False, "timing-check said EQUAL without its count: %s" % c.stdout.strip()[:300]
     with open(stats) as f:
-        triangles = json.load(f)["triangles"]
+        checked = json.load(f)
+    # The same render without the log takes the plain sweep (no times kept: blocks that
+    # only delay timed as delays); its statistics must be those the clocked reference
+    # just judged.
+    plain_stats = os.path.join(folder, "plain.json")
+    plain = [x for x in cmd if x not in ("--timing-log", log)]
+    plain[plain.index(stats)] = plain_stats
+    r = subprocess.run(plain, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if r.returncode != 0:
+        return False, "plain render exit %d: %s" % (r.returncode, r.stderr.strip()[:300])
+    with open(plain_stats) as f:
+        unlogged = json.load(f)
+    moved = timing_differences(checked, unlogged)
+    if moved:
+        return False, "PLAIN SWEEP DIFFERENT (%s): %s" % (" ".join(sets), "; ".join(moved[:5]))
+    triangles = checked["triangles"]
     return True, (int(m.group(1)), triangles["in"] > triangles["drawn"])
+
+
+TIMED = ["busy_cycles", "starved_cycles", "blocked_cycles", "fifo_peak", "fifo_mean", "last_cycle", "memory"]
+
+
+def timing_differences(checked, plain):
+    """What a plain render's statistics say otherwise than the logged one's: frame cycles,
+    each block's timed figures and its utilization over time."""
+    out = []
+    if checked["frame_cycles"] != plain["frame_cycles"]:
+        out.append("frame cycles %s, plain %s" % (checked["frame_cycles"], plain["frame_cycles"]))
+    for name, block in checked["blocks"].items():
+        other = plain["blocks"].get(name, {})
+        for key in TIMED:
+            if block.get(key) != other.get(key):
+                out.append("%s %s %s, plain %s" % (name, key, block.get(key), other.get(key)))
+    if checked.get("utilization_over_time") != plain.get("utilization_over_time"):
+        out.append("utilization over time")
+    return out
 
 
 def main():

@@ -52,8 +52,18 @@ MainPassTiming::MainPassTiming(std::vector<Timing> blocks, DramTiming dram) {
   }
   for (size_t j = 0; j + 1 < blocks_.size(); ++j) blocks_[j].next_s = blocks_[j + 1].s;
   // After the last block, a FIFO always with room: a window of "started before cycle 0".
-  blocks_.back().next_s = &windows_[blocks_.size() * 2 * size_t(window_)];
+  room_ = &windows_[blocks_.size() * 2 * size_t(window_)];
+  blocks_.back().next_s = room_;
   blocks_.back().next_depth = 1;
+  // The blocks that may only delay ("Blocks that only delay"): a suffix, ideal memory.
+  delay_from_ = blocks_.size();
+  while (!dram_ && delay_from_ > 1) {
+    const Timing& t = blocks_[delay_from_ - 1].timing;
+    if (t.ii != 1 || t.latency < 1 || t.line_bytes > 0 || t.fifo_depth < 2) break;
+    --delay_from_;
+  }
+  delay_work_.assign(blocks_.size(), -1);
+  if (delay_from_ < blocks_.size()) blocks_[delay_from_ - 1].next_s = room_;
   times_.assign(blocks_.size(), std::vector<Times>(64));
   depth_back_.assign(ring_above(blocks_[0].timing.miss_queue), -1);
 }
@@ -132,8 +142,7 @@ void MainPassTiming::sweep_pixels(int count) {
     }
     dram_->forget_before(s);  // every later request is made after s
     r.t.blocked += uint64_t(s - r.free);
-    if constexpr (kInspect) r.t.add_busy(s, uint64_t(r.ii));
-    else r.t.busy += uint64_t(r.ii);
+    r.t.add_busy(s, uint64_t(r.ii));  // (into the histogram too, when kept)
     r.free = s + r.ii;
     if (r.timing.miss_queue == 0 && depth_back + 1 > r.free) {  // the walk waits for the data
       r.t.blocked += uint64_t(depth_back + 1 - r.free);
@@ -155,8 +164,7 @@ void MainPassTiming::sweep_pixels(int count) {
       b.t.fifo_peak = std::max(b.t.fifo_peak, n_ + 1 - uint64_t(b.head));
       const uint32_t w = b.w[i];
       const int64_t o = std::max<int64_t>(b.ii * int64_t(w), 1);  // 1: bypassed
-      if constexpr (kInspect) b.t.add_busy(s, uint64_t(o));
-      else b.t.busy += uint64_t(o);
+      b.t.add_busy(s, uint64_t(o));
       b.free = s + o;
       int64_t f = b.free + (w > 0 ? b.latency - b.ii : 0);
       if (const uint32_t lines = b.work.lines_at(i); lines > 0) {  // its data from the DRAM
@@ -196,9 +204,12 @@ void MainPassTiming::raster_chunk(int first, int last) {
     if constexpr (kInspect) times_[0][size_t(i)] = {s, d, valid, 0};
     starts[i] = s, handed[i] = d, last_d = d;
   }
-  if constexpr (!kInspect) r.t.busy += uint64_t(ii) * uint64_t(last - first);
   r.t.blocked += blocked;
   r.free = free, r.t.last = last_d;
+  if constexpr (!kInspect) {
+    r.t.busy += uint64_t(ii) * uint64_t(last - first);
+    if (r.t.bin_cycles > 0) bin_busy(0, first, last, uint64_t(ii) * uint64_t(last - first));
+  }
 }
 
 // Span block j's pixels [first, last) (its part of sweep_pixels, without memory).
@@ -268,8 +279,62 @@ void MainPassTiming::span_chunk(size_t j, int first, int last) {
   if (last > first) fifo_peak = std::max<int64_t>(fifo_peak, 1);  // (a pixel that came to a started FIFO)
   b.t.blocked += blocked, b.t.fifo_cycles += fifo_cycles, b.t.fifo_peak = uint64_t(fifo_peak);
   b.free = free, b.t.last = last_d;
+  if constexpr (!kInspect)
+    if (b.t.bin_cycles > 0) bin_busy(j, first, last, busy);
   // (Behind the FIFO's pixels when no longer followed: the next that follows it catches up.)
   b.head = int64_t(n_) + std::max<int64_t>(head, last - depth);
+}
+
+// Block j's pixels of the packet, as it only delays them ("Blocks that only delay"):
+// each starts the cycle after the block before handed it on and is handed on when done.
+void MainPassTiming::delay_packet(size_t j, int count) {
+  Slot& b = blocks_[j];
+  const int64_t* const before = blocks_[j - 1].d + at(n_);
+  int64_t* const starts = b.s + at(n_);
+  int64_t* const handed = b.d + at(n_);
+  const int64_t done = delay_work_[j] > 0 ? b.latency : 1;  // s + II·(w − 1) + L, or s + 1
+  for (int i = 0; i < count; ++i) starts[i] = before[i] + 1, handed[i] = before[i] + 1 + done;
+  b.t.busy += uint64_t(count);         // one cycle a pixel (II·w or 1)
+  b.t.fifo_cycles += uint64_t(count);  // in its FIFO from the end of cycle d_{j−1} to s
+  b.t.fifo_peak = std::max<uint64_t>(b.t.fifo_peak, 1);
+  b.free = starts[count - 1] + 1, b.t.last = handed[count - 1];
+  b.head = int64_t(n_) + count;  // every pixel started before the next comes in
+  if (b.t.bin_cycles > 0) bin_busy(j, 0, count, uint64_t(count));
+}
+
+void MainPassTiming::bin_busy(size_t j, int first, int last, uint64_t busy) {
+  if (last <= first) return;
+  BlockTimes& t = blocks_[j].t;
+  const int64_t* const starts = blocks_[j].s + at(n_);
+  const int64_t end = blocks_[j].free;  // the end of the last one's work
+  if (uint64_t(starts[first]) / t.bin_cycles == uint64_t(end - 1) / t.bin_cycles)
+    return t.add_to_bins(starts[first], busy);
+  // Pixel by pixel: the raster's take II, a span block's II·w (1: bypassed).
+  const int64_t ii = blocks_[j].ii;
+  for (int i = first; i < last; ++i)
+    t.add_to_bins(starts[i], uint64_t(j == 0 ? ii : std::max<int64_t>(ii * int64_t(blocks_[j].w[i]), 1)));
+}
+
+// Ends the delay for the blocks whose work in this packet is not the work every pixel
+// before had there (and for those before them): the recurrence times them from here on.
+void MainPassTiming::keep_delaying(int count) {
+  if (count == 0) return;
+  size_t from = delay_from_;
+  for (size_t j = delay_from_; j < blocks_.size(); ++j) {
+    const Work& w = blocks_[j].work;
+    int& kept = delay_work_[j];
+    if (kept < 0) kept = int(w.at(0));
+    bool same = kept <= 1;
+    if (w.per_pixel)
+      for (int i = 0; i < count && same; ++i) same = w.per_pixel[i] == kept;
+    else
+      same = same && w.each == uint32_t(kept) && w.first() == uint32_t(kept);
+    if (!same) from = j + 1;
+  }
+  if (from == delay_from_) return;
+  blocks_[delay_from_ - 1].next_s = blocks_[delay_from_].s;  // its FIFO may fill now
+  delay_from_ = from;
+  if (delay_from_ < blocks_.size()) blocks_[delay_from_ - 1].next_s = room_;
 }
 
 void MainPassTiming::sweep(const SpanPacket& p, uint64_t hidden_before, const std::vector<StepLines>& misses) {
@@ -292,12 +357,14 @@ void MainPassTiming::sweep(const SpanPacket& p, uint64_t hidden_before, const st
   // Inspecting (times kept, utilization over time) or not: two copies of the loop, so
   // that the common one carries no test for it.
   const bool watched = !watched_ || watched_(p);
-  bool inspect = keep_times && (watched || log_);
-  for (const Slot& b : blocks_) inspect = inspect || b.t.bin_cycles > 0;
+  const bool inspect = keep_times && (watched || log_);
   if (dram_) {
     if (inspect) sweep_pixels<true>(count);
     else sweep_pixels<false>(count);
   } else {
+    if (delay_from_ < blocks) keep_delaying(count);
+    // Inspected, every block by the recurrence (the same times: "Blocks that only delay").
+    const size_t timed = inspect ? blocks : delay_from_;
     for (int first = 0; first < count; first += chunk_) {  // block-major in chunks ("Order of the sweep")
       const int last = std::min(count, first + chunk_);
       if (inspect) {
@@ -305,11 +372,13 @@ void MainPassTiming::sweep(const SpanPacket& p, uint64_t hidden_before, const st
         for (size_t j = 1; j < blocks; ++j) span_chunk<true, false>(j, first, last);
       } else {
         raster_chunk<false>(first, last);
-        for (size_t j = 1; j < blocks; ++j)
+        for (size_t j = 1; j < timed; ++j)
           if (blocks_[j].work.per_pixel) span_chunk<false, false>(j, first, last);
           else span_chunk<false, true>(j, first, last);
       }
     }
+    if (count > 0)
+      for (size_t j = timed; j < blocks; ++j) delay_packet(j, count);
     n_ += uint64_t(count);
   }
   if (log_) log_->pixels(p, hidden_before, *this);

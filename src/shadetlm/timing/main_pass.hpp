@@ -32,6 +32,19 @@
 // (sweep_chunk). Under the memory model the sweep stays pixel-major: the DRAM serves
 // requests oldest pixel first, in the order they are made.
 //
+// Blocks that only delay (delay_packet). A block with II = 1 and L ≥ 1 whose every pixel
+// so far had the same work w ∈ {0, 1}, followed only by such blocks, each with a FIFO of
+// at least 2: then every term of its recurrence but the first is slack, for every pixel:
+//   the unit:      s(n−1) + o = s(n−1) + 1 ≤ d_{j−1}(n) + 1       (hand-overs one a cycle)
+//   a register:    d(n−C) + 1 = s(n−C) + L + 1 ≤ s(n−1) + 1       (C = L + 1; w = 0: s + 2)
+//   in order:      d(n−1) + 1 ≤ s(n) + L                          (the same delay for all)
+//   the next FIFO: s_{j+1}(n−b) + 1 = d(n−b) + 2 ≤ d(n)           (b ≥ 2, it delays too)
+// so s(n) = d_{j−1}(n) + 1 and d(n) = s(n) + L (w = 0: + 1), and the block before them
+// is never held up by the first of them. Such a suffix of the pass is timed by that
+// formula, a packet at a time, and the block before it looks at no FIFO after it. The
+// first pixel with other work at one of them ends that for the frame (from it on, the
+// recurrence times them: their windows and state are the recurrence's all along).
+//
 // Memory (docs/memory.md): a memory client whose pixel moved m > 0 cache lines asks the
 // shared DRAM for them as it starts the pixel; the data is back at r (memory/
 // dram.hpp), and the pixel is done at f_j(n) = max(s_j(n) + II·(w − 1), r) + L. Its
@@ -68,6 +81,10 @@ struct BlockTimes {
   std::vector<uint64_t> busy_per_bin;
   void add_busy(int64_t start, uint64_t cycles) {
     busy += cycles;
+    add_to_bins(start, cycles);
+  }
+  // Busy cycles already counted in `busy`: into busy_per_bin only (when kept).
+  void add_to_bins(int64_t start, uint64_t cycles) {
     if (bin_cycles > 0) histogram(uint64_t(start), cycles);
   }
 
@@ -183,6 +200,8 @@ class MainPassTiming {
   BlockTimes& times(int slot) { return blocks_[size_t(slot)].t; }
   const Timing& timing(int slot) const { return blocks_[size_t(slot)].timing; }
   size_t size() const { return blocks_.size(); }
+  // The first block of those the plain sweep times as fixed delays (size(): none).
+  size_t delaying_from() const { return delay_from_; }
 
  private:
   struct Slot {
@@ -208,6 +227,13 @@ class MainPassTiming {
   // Ideal memory: pixels [first, last) of the packet at the raster, then at span block j.
   template <bool kInspect> void raster_chunk(int first, int last);
   template <bool kInspect, bool kUniform> void span_chunk(size_t j, int first, int last);
+  // The pass's blocks from delay_from_ on that only delay ("Blocks that only delay"):
+  // packet's pixels at block j; which of them still do, given this packet's work.
+  void delay_packet(size_t j, int count);
+  // Pixels [first, last) of the packet at block j, timed: their `busy` cycles into its
+  // histogram, at once where the bin of the first's start holds the last's end.
+  void bin_busy(size_t j, int first, int last, uint64_t busy);
+  void keep_delaying(int count);
   // The raster's depth read at cycle t moves `lines`: t waits for a miss entry; returns
   // the cycle its data is back.
   int64_t depth_read(int64_t& t, uint32_t lines);
@@ -221,6 +247,9 @@ class MainPassTiming {
   std::vector<int64_t> windows_;
   int64_t window_ = 0, reach_ = 0, base_ = 0;
   int chunk_ = 1;              // pixels timed block-major at a time (K)
+  size_t delay_from_ = 0;      // the first block of the suffix that only delays (size(): none)
+  std::vector<int> delay_work_;  // the work every pixel had at such a block (-1: none yet)
+  int64_t* room_ = nullptr;    // a window of starts "before cycle 0": a FIFO always with room
   uint64_t n_ = 0;             // pixels swept so far
   int64_t triangle_start_ = -1;  // when the raster took its last triangle
   std::vector<std::vector<Times>> times_;
