@@ -16,14 +16,17 @@ Usage: scripts/cells.py [--quick] [--doc] [--fresh] [--jobs N] [--formats "fixed
            forward-difference at fixed:1.12 took 40 minutes)
   --doc    the tables into docs/rtl.md between its <!-- cells:N --> markers
   --fresh  forget the rows of earlier runs (by default a run's rows join those in
-           out/cells/cells.json measured on the same RTL and library, so configurations
-           can be synthesized one at a time; rows of other RTL are dropped, and said so)
+           out/cells/cells.json measured on the same RTL, library, flow and tool versions,
+           so configurations can be synthesized one at a time; other rows are dropped,
+           and said so). Each row is saved as it completes.
   --jobs N configurations synthesized at once (default: the cores; each can take GBs)
-  --saved  synthesize nothing: the table of the rows in out/cells/cells.json
+  --saved  synthesize nothing: the table of the rows in out/cells/cells.json (exit 2
+           if none is of this RTL, library and flow)
 Environment: SHADETLM (the program), SHADETLM_LIBERTY (another Liberty file).
 Exit 2, naming the Debian package that installs it, when a tool or the library is missing;
 2 on bad arguments."""
 import hashlib
+import inspect
 import json
 import math
 import os
@@ -33,7 +36,8 @@ import shutil
 import subprocess
 import sys
 import tempfile
-from concurrent.futures import ThreadPoolExecutor
+import threading
+from concurrent.futures import ThreadPoolExecutor, as_completed
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 LIBERTY = os.environ.get("SHADETLM_LIBERTY", "/usr/share/qflow/tech/osu018/osu018_stdcells.lib")
@@ -235,10 +239,18 @@ def check():
 
 
 def fingerprint():
-    """What a row was measured on: the RTL's sources and the cell library (sha256)."""
+    """What a row was measured on (sha256): the RTL's sources, the cell library, the flow
+    itself (this script's synthesis and timing functions and its clock) and the tools'
+    versions. A row of another fingerprint is not this flow's answer."""
     h = hashlib.sha256()
     for path in sorted(RTL.glob("*.sv")) + [RTL / "modes.txt", pathlib.Path(LIBERTY)]:
         h.update(path.name.encode() + b"\0" + path.read_bytes())
+    flow = [inspect.getsource(f) for f in (synthesize, sta, min_period, register_overhead, input_activity,
+                                           configuration)]
+    versions = [subprocess.run(cmd, capture_output=True, text=True).stdout.strip()
+                for cmd in (["yosys", "-V"], ["sta", "-version"])]
+    for text in flow + versions + [str(CLOCK_MHZ), str(TARGET_PS)]:
+        h.update(text.encode() + b"\0")
     return h.hexdigest()[:16]
 
 
@@ -247,7 +259,7 @@ def merged(earlier_path, rows, stamp):
     (this run's where both have it), ordered by format, then mode."""
     kept = {}
     try:
-        earlier = json.loads(earlier_path.read_text()) if earlier_path.exists() else []
+        earlier = json.loads(earlier_path.read_text()) if earlier_path and earlier_path.exists() else []
     except ValueError:
         print(f"cells.py: {earlier_path}: not JSON, its rows are dropped", file=sys.stderr)
         earlier = []
@@ -256,9 +268,9 @@ def merged(earlier_path, rows, stamp):
             kept[(r["format"], r["mode"])] = r
         else:
             print(f"cells.py: {earlier_path}: {r.get('mode')} at {r.get('format')} dropped: measured on other "
-                  f"RTL or another library (fingerprint {r.get('rtl')}, now {stamp})", file=sys.stderr)
+                  f"RTL, library, flow or tools (fingerprint {r.get('rtl')}, now {stamp})", file=sys.stderr)
     for r in rows:
-        kept[(r["format"], r["mode"])] = r
+        kept[(r["format"], r["mode"])] = r  # (rows of this run: stamped by it)
     order = lambda key: (key[0], MODES.index(key[1]))
     return [kept[k] for k in sorted(kept, key=order)]
 
@@ -307,21 +319,36 @@ def main(argv):
     with tempfile.TemporaryDirectory(prefix="cells-") as tmp:
         overhead = register_overhead(pathlib.Path(tmp))
     stamp = fingerprint()
-    configurations = [(m, f) for f in formats for m in modes]
-    with ThreadPoolExecutor(max_workers=jobs) as pool:
-        rows = list(pool.map(lambda job: configuration(binary, job[0], job[1], overhead), configurations))
-    for r in rows:
-        r["rtl"] = stamp
     out = ROOT / "out/cells"
     out.mkdir(parents=True, exist_ok=True)
-    if not fresh:
-        rows = merged(out / "cells.json", rows, stamp)
-    # Written whole, then renamed: a kill leaves the earlier rows, never half a file.
-    (out / "cells.json.tmp").write_text(json.dumps(rows, indent=1) + "\n")
-    os.replace(out / "cells.json.tmp", out / "cells.json")
+    configurations = [(m, f) for f in formats for m in modes]
+    rows, lock = [] if fresh else merged(out / "cells.json", [], stamp), threading.Lock()
+    # Each row saved as it completes: a configuration that fails or a kill loses only
+    # the rows still running.
+    with ThreadPoolExecutor(max_workers=jobs) as pool:
+        running = [pool.submit(configuration, binary, m, f, overhead) for m, f in configurations]
+        failed = None
+        for done in as_completed(running):
+            try:
+                row = dict(done.result(), rtl=stamp)
+            except SystemExit as e:  # (a configuration's fail(): said already; the others still saved)
+                failed = failed or e
+                continue
+            with lock:
+                rows = merged(None, rows + [row], stamp)
+                save(out / "cells.json", rows)
+    if failed:
+        raise failed
     print(f"Register overhead (clock-to-Q + setup of DFFPOSX1): {overhead:.3f} ns; the model's clock {CLOCK_MHZ} MHz "
           f"({1000 / CLOCK_MHZ:.1f} ns).\n")
     write_table(rows, doc)
+
+
+def save(path, rows):
+    """Written whole, then renamed: a kill leaves the earlier rows, never half a file."""
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps(rows, indent=1) + "\n")
+    os.replace(tmp, path)
 
 
 def write_table(rows, doc):
@@ -329,9 +356,12 @@ def write_table(rows, doc):
     out/cells/cells.txt, and with doc in docs/rtl.md."""
     out = ROOT / "out/cells"
     if rows is None:
+        tools()  # (the fingerprint reads the library and asks the tools their versions)
         if not (out / "cells.json").exists():
             fail(f"{out / 'cells.json'}: no saved rows (a run without --saved makes them)")
         rows = merged(out / "cells.json", [], fingerprint())
+        if not rows:
+            fail(f"{out / 'cells.json'}: no saved row of this RTL, library and flow (a run without --saved makes them)")
     text = table(rows)
     print(text, end="")
     (out / "cells.txt").write_text(text)
