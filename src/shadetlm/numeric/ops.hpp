@@ -121,8 +121,8 @@ template <class T> void count_discarded(Ops o) {
 template <class T> T value(T x) { return x; }
 template <class T> T value(Counted<T> x) { return x.v; }
 
-// x times a power of two (½, ¼): an exponent shift in hardware (a wire shift in fixed
-// point), not an operation. Every datapath follows this rule: a division by a texture's
+// x times a constant power of two (½, ¼, 1/256: known when the unit is built): an
+// exponent shift in hardware (a wire shift in fixed point), not an operation. Every datapath follows this rule: a division by a texture's
 // power-of-two size, the tracers' midpoints and EWA's half-axes alike.
 template <class T>
 T shifted(T x, T power_of_two) {
