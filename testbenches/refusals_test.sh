@@ -158,6 +158,7 @@ for bad in zip:0 zip:10 zip: zips:x rle:2 piz:1; do
   check "compression-level-$bad" 2 "$bin" render "${small[@]}" -o bad.exr --compression "$bad"
   says "compression-level-$bad-named" "--compression"
   says "compression-level-$bad-why" "from 1 to 9"
+  absent "compression-level-$bad-nothing" bad.exr
 done
 check compression-unknown 2 "$bin" render "${small[@]}" -o bad.exr --compression brotli
 says compression-unknown-named "--compression"

@@ -3,6 +3,7 @@
 // whole frames: testbenches/timing_check_test.sh.)
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <random>
 
 #include "shadetlm/timing/main_pass.hpp"
@@ -56,6 +57,7 @@ TEST_CASE("MainPassTiming: the inspected sweep and the plain one count the same"
     for (auto& t : blocks) t = {uint64_t(pick(1, 40)), uint64_t(pick(1, 6)), uint64_t(pick(1, 16))};
     // spelled: the same work, a uniform block's given per pixel (its lead on the first)
     modules::MainPassTiming inspected(blocks), plain(blocks), spelled(blocks);
+    inspected.time_every_block();  // (the recurrence on every block: the reference)
     inspected.keep_times = true;
     const uint64_t bin = uint64_t(pick(1, 60));  // (utilization over time: the same histogram)
     for (size_t j = 0; j < blocks.size(); ++j)
@@ -111,12 +113,14 @@ TEST_CASE("MainPassTiming: the inspected sweep and the plain one count the same"
 }
 
 // The plain sweep's blocks that only delay (main_pass.hpp, "Blocks that only delay")
-// against the recurrence (inspected): random passes whose last blocks have II 1, FIFOs
-// of 2 or more and the same work (0 or 1) on every pixel, so that the plain sweep times
-// them as delays; in half the seeds one of them then takes other work mid-frame and the
-// recurrence takes over from the delays' state.
+// against the recurrence on every block (time_every_block): random passes whose last
+// blocks have II 1 and the same work (0 or 1) on every pixel, so that the plain sweep
+// times those after the last FIFO of 1 among them as delays; empty packets among them. In half the seeds one
+// of them then takes other work at packet 40 (more work, a lead, or one pixel's work
+// spelled otherwise) and the recurrence takes over from the delays' state. A third line
+// inspects only every other packet (a traced region), mixing both sweeps.
 TEST_CASE("MainPassTiming: blocks that only delay, timed as delays, count as the recurrence does", "[timing]") {
-  int delayed = 0, ended = 0;
+  int delayed = 0;
   for (uint32_t seed = 1; seed <= 300; ++seed) {
     std::mt19937 rng(seed);
     auto pick = [&](int lo, int hi) { return int(std::uniform_int_distribution<int>(lo, hi)(rng)); };
@@ -125,26 +129,37 @@ TEST_CASE("MainPassTiming: blocks that only delay, timed as delays, count as the
     std::vector<uint32_t> kept(count);  // each delaying block's work on every pixel
     for (size_t j = 0; j < count; ++j) {
       const bool delays = j >= count - suffix;
-      blocks[j] = {uint64_t(pick(1, 40)), delays ? 1u : uint64_t(pick(1, 6)), uint64_t(delays ? pick(2, 16) : pick(1, 16))};
+      blocks[j] = {uint64_t(pick(1, 40)), delays ? 1u : uint64_t(pick(1, 6)), uint64_t(pick(1, 16))};
       kept[j] = uint32_t(pick(0, 1));
     }
-    modules::MainPassTiming inspected(blocks), plain(blocks);
-    inspected.keep_times = true;
+    modules::MainPassTiming recurrence(blocks), plain(blocks), mixed(blocks);
+    recurrence.time_every_block();
+    recurrence.keep_times = true;
+    mixed.watch_only([](const modules::SpanPacket& p) { return p.y % 2 == 1; });
+    mixed.keep_times = true;
     const uint64_t bin = uint64_t(pick(1, 60));
-    for (size_t j = 0; j < count; ++j) inspected.times(int(j)).bin_cycles = plain.times(int(j)).bin_cycles = bin;
+    for (size_t j = 0; j < count; ++j)
+      for (auto* line : {&recurrence, &plain, &mixed}) line->times(int(j)).bin_cycles = bin;
     const bool change = seed % 2 == 0;
     const size_t changed = count - suffix + size_t(pick(0, int(suffix) - 1));  // the block whose work changes
-    const size_t expected_from = change ? changed + 1 : count - suffix;
+    const int how = pick(0, 2);
+    // The delays: the last of those blocks with a FIFO of 2 or more (with one of 1 the
+    // block before could be held up), less those before a block whose work changed.
+    size_t expected_from = count;
+    while (expected_from > count - suffix && blocks[expected_from - 1].fifo_depth >= 2) --expected_from;
+    if (change) expected_from = std::max(expected_from, changed + 1);
     std::vector<std::vector<uint16_t>> work(count, std::vector<uint16_t>(modules::kSpanMax));
     int64_t arrival = 0;
     for (int packet = 0; packet < 80; ++packet) {
       if (pick(0, 3) == 0) {
-        const int64_t taken = inspected.start_triangle(arrival);
+        const int64_t taken = recurrence.start_triangle(arrival);
         REQUIRE(plain.start_triangle(arrival) == taken);
+        REQUIRE(mixed.start_triangle(arrival) == taken);
         arrival = taken + pick(0, 30);
       }
       modules::SpanPacket p{};
-      p.count = pick(1, modules::kSpanMax);
+      p.count = packet != 40 && pick(0, 9) == 0 ? 0 : pick(1, modules::kSpanMax);
+      p.y = packet;
       for (size_t j = 1; j < count; ++j) {
         modules::Work w{nullptr, uint32_t(pick(0, 3)), nullptr, uint32_t(pick(0, 1) ? pick(1, 5) : 0)};
         if (j >= count - suffix) w = {nullptr, kept[j]};  // a delay: the same work, uniform or spelled per pixel
@@ -152,29 +167,42 @@ TEST_CASE("MainPassTiming: blocks that only delay, timed as delays, count as the
           std::fill(work[j].begin(), work[j].end(), uint16_t(kept[j]));
           w = {work[j].data(), 0};
         }
-        if (change && packet == 40 && j == changed) w = {nullptr, kept[j] + 1};
-        inspected.set_work(int(j), w), plain.set_work(int(j), w);
+        if (change && packet == 40 && j == changed) {
+          if (how == 0) w = {nullptr, kept[j] + 1};
+          if (how == 1) w = {nullptr, kept[j], nullptr, 1};  // a lead on its first pixel
+          if (how == 2) {
+            std::fill(work[j].begin(), work[j].end(), uint16_t(kept[j]));
+            work[j][size_t(pick(0, p.count - 1))] = uint16_t(1 - kept[j]);
+            w = {work[j].data(), 0};
+          }
+        }
+        for (auto* line : {&recurrence, &plain, &mixed}) line->set_work(int(j), w);
       }
       const uint64_t hidden = uint64_t(pick(0, 5));
-      inspected.sweep(p, hidden), plain.sweep(p, hidden);
+      for (auto* line : {&recurrence, &plain, &mixed}) line->sweep(p, hidden);
     }
-    inspected.settle(), plain.settle();
-    INFO("seed " << seed);
+    for (auto* line : {&recurrence, &plain, &mixed}) line->settle();
+    INFO("seed " << seed << (change ? ", work changed" : ""));
+    CHECK(recurrence.delaying_from() == count);
     CHECK(plain.delaying_from() == expected_from);  // the delays were taken (and ended where the work changed)
-    delayed += expected_from < count, ended += change;
-    CHECK(inspected.end() == plain.end());
+    CHECK(mixed.delaying_from() == expected_from);
+    delayed += plain.delaying_from() < count;
+    CHECK(recurrence.end() == plain.end());
+    CHECK(recurrence.end() == mixed.end());
     for (size_t j = 0; j < count; ++j) {
-      const modules::BlockTimes &a = inspected.times(int(j)), &b = plain.times(int(j));
-      INFO("block " << j);
-      CHECK(a.busy == b.busy);
-      CHECK(a.starved == b.starved);
-      CHECK(a.blocked == b.blocked);
-      CHECK(a.fifo_cycles == b.fifo_cycles);
-      CHECK(a.fifo_peak == b.fifo_peak);
-      CHECK(a.last == b.last);
-      CHECK(a.busy_per_bin == b.busy_per_bin);
+      const modules::BlockTimes& a = recurrence.times(int(j));
+      for (const auto* line : {&plain, &mixed}) {
+        const modules::BlockTimes& b = line->times(int(j));
+        INFO("block " << j << (line == &mixed ? ", every other packet inspected" : ""));
+        CHECK(a.busy == b.busy);
+        CHECK(a.starved == b.starved);
+        CHECK(a.blocked == b.blocked);
+        CHECK(a.fifo_cycles == b.fifo_cycles);
+        CHECK(a.fifo_peak == b.fifo_peak);
+        CHECK(a.last == b.last);
+        CHECK(a.busy_per_bin == b.busy_per_bin);
+      }
     }
   }
   CHECK(delayed > 100);  // (most seeds end with some block still delaying)
-  CHECK(ended == 150);
 }

@@ -28,7 +28,7 @@ void run_parts(int parts, const std::function<void(int part)>& part) {
   std::vector<int> left_over;
   for (int k = 0; k + 1 < parts; ++k) {
     try {
-      SignalsHeld held;  // SIGINT and SIGTERM stay with the main thread
+      SignalsHeld held;  // SIGINT, SIGTERM and SIGHUP stay with the main thread
       workers.emplace_back(run, k);
     } catch (const std::system_error&) {
       left_over.push_back(k);

@@ -11,7 +11,7 @@ int threads_or_cores(int threads);
 // Runs part(0) … part(parts − 1), each on its own thread (the last on this one), and
 // returns once all are done. A thread that cannot be had leaves its part to this
 // thread, after the others. Every error is kept, by part, and the first rethrown once
-// every thread is joined. The helper threads never take SIGINT or SIGTERM.
+// every thread is joined. The helper threads never take SIGINT, SIGTERM or SIGHUP.
 void run_parts(int parts, const std::function<void(int part)>& part);
 
 }  // namespace shadetlm::core

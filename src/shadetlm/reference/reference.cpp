@@ -422,21 +422,22 @@ std::map<std::string, std::string> truth(const core::Scene& scene) {
 }
 
 core::Frame to_frame(const Image& img, int threads) {
-  // A layer: its name and where its values stand in the image (every `stride` doubles).
+  // A layer: its name and where its values stand in the image (a component of a vector
+  // buffer, or a scalar buffer).
   struct Layer {
     const char* name;
-    const double* values;
-    size_t stride;
+    const Buffer<glm::dvec3>* vectors;
+    int component;
+    const Buffer<double>* scalars;
+    double at(size_t i) const { return vectors ? (*vectors)[i][component] : (*scalars)[i]; }
   };
-  static_assert(sizeof(glm::dvec3) == 3 * sizeof(double), "a dvec3 is three doubles");
-  const auto of = [](const Buffer<glm::dvec3>& b, int k) { return b.empty() ? nullptr : &b[0][k]; };
-  std::vector<Layer> layers = {{"R", of(img.color, 0), 3},      {"G", of(img.color, 1), 3},
-                               {"B", of(img.color, 2), 3},      {"A", img.alpha.data(), 1},
-                               {"Z", img.depth.data(), 1},      {"N.X", of(img.normal, 0), 3},
-                               {"N.Y", of(img.normal, 1), 3},   {"N.Z", of(img.normal, 2), 3}};
+  std::vector<Layer> layers = {{"R", &img.color, 0, nullptr},   {"G", &img.color, 1, nullptr},
+                               {"B", &img.color, 2, nullptr},   {"A", nullptr, 0, &img.alpha},
+                               {"Z", nullptr, 0, &img.depth},   {"N.X", &img.normal, 0, nullptr},
+                               {"N.Y", &img.normal, 1, nullptr}, {"N.Z", &img.normal, 2, nullptr}};
   if (!img.hit.empty())
-    layers.insert(layers.end(), {{"parallax.u", of(img.hit, 0), 3}, {"parallax.v", of(img.hit, 1), 3},
-                                 {"parallax.height", of(img.hit, 2), 3}});
+    layers.insert(layers.end(), {{"parallax.u", &img.hit, 0, nullptr}, {"parallax.v", &img.hit, 1, nullptr},
+                                 {"parallax.height", &img.hit, 2, nullptr}});
   core::Frame f(img.width, img.height);
   f.channels.resize(layers.size());
   // Each layer converted whole by one thread, which first touches its pages (at 1080p
@@ -445,7 +446,7 @@ core::Frame to_frame(const Image& img, int threads) {
   core::run_parts(parts, [&](int part) {
     for (size_t k = size_t(part); k < layers.size(); k += size_t(parts)) {
       std::vector<float> values(f.pixel_count());
-      for (size_t i = 0; i < values.size(); ++i) values[i] = float(layers[k].values[i * layers[k].stride]);
+      for (size_t i = 0; i < values.size(); ++i) values[i] = float(layers[k].at(i));
       f.channels[k] = {layers[k].name, std::move(values)};
     }
   });

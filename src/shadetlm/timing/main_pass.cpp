@@ -315,8 +315,11 @@ void MainPassTiming::bin_busy(size_t j, int first, int last, uint64_t busy) {
     t.add_to_bins(starts[i], uint64_t(j == 0 ? ii : std::max<int64_t>(ii * int64_t(blocks_[j].w[i]), 1)));
 }
 
-// Ends the delay for the blocks whose work in this packet is not the work every pixel
-// before had there (and for those before them): the recurrence times them from here on.
+void MainPassTiming::time_every_block() {
+  if (delay_from_ < blocks_.size()) blocks_[delay_from_ - 1].next_s = blocks_[delay_from_].s;
+  delay_from_ = blocks_.size();
+}
+
 void MainPassTiming::keep_delaying(int count) {
   if (count == 0) return;
   size_t from = delay_from_;
@@ -354,8 +357,8 @@ void MainPassTiming::sweep(const SpanPacket& p, uint64_t hidden_before, const st
       b.w = b.uniform;
     }
   }
-  // Inspecting (times kept, utilization over time) or not: two copies of the loop, so
-  // that the common one carries no test for it.
+  // Inspecting (every time kept: the timing log, waveforms, the timeline) or not: two
+  // copies of the loop, so that the common one carries no test for it.
   const bool watched = !watched_ || watched_(p);
   const bool inspect = keep_times && (watched || log_);
   if (dram_) {

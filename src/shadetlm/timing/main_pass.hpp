@@ -32,18 +32,21 @@
 // (sweep_chunk). Under the memory model the sweep stays pixel-major: the DRAM serves
 // requests oldest pixel first, in the order they are made.
 //
-// Blocks that only delay (delay_packet). A block with II = 1 and L ≥ 1 whose every pixel
-// so far had the same work w ∈ {0, 1}, followed only by such blocks, each with a FIFO of
-// at least 2: then every term of its recurrence but the first is slack, for every pixel:
+// Blocks that only delay (delay_packet; ideal memory only: under the DRAM model the sweep
+// is pixel-major and no block is a delay). A block with II = 1 and L ≥ 1 whose every
+// pixel so far had the same work w ∈ {0, 1}, followed only by such blocks, each with a
+// FIFO of at least 2: then every term of its recurrence but the first is slack, for
+// every pixel (D: its delay, L, or 1 when w = 0):
 //   the unit:      s(n−1) + o = s(n−1) + 1 ≤ d_{j−1}(n) + 1       (hand-overs one a cycle)
-//   a register:    d(n−C) + 1 = s(n−C) + L + 1 ≤ s(n−1) + 1       (C = L + 1; w = 0: s + 2)
-//   in order:      d(n−1) + 1 ≤ s(n) + L                          (the same delay for all)
+//   a register:    d(n−C) + 1 = s(n−C) + D + 1 ≤ s(n−1) + 1       (C = L + 1 ≥ D + 1)
+//   in order:      d(n−1) + 1 = s(n−1) + D + 1 ≤ s(n) + D         (the same delay for all)
 //   the next FIFO: s_{j+1}(n−b) + 1 = d(n−b) + 2 ≤ d(n)           (b ≥ 2, it delays too)
-// so s(n) = d_{j−1}(n) + 1 and d(n) = s(n) + L (w = 0: + 1), and the block before them
-// is never held up by the first of them. Such a suffix of the pass is timed by that
-// formula, a packet at a time, and the block before it looks at no FIFO after it. The
-// first pixel with other work at one of them ends that for the frame (from it on, the
-// recurrence times them: their windows and state are the recurrence's all along).
+// so s(n) = d_{j−1}(n) + 1 and d(n) = s(n) + D, and the block before them is never held
+// up by the first of them. Such a suffix of the pass is timed by that formula, a packet
+// at a time, and the block before it looks at no FIFO after it. A packet with other work
+// at one of them ends that, from its first pixel and for the rest of the frame, for that
+// block and every one before it in the suffix (keep_delaying): the recurrence times them
+// from there, their windows and state the recurrence's all along.
 //
 // Memory (docs/memory.md): a memory client whose pixel moved m > 0 cache lines asks the
 // shared DRAM for them as it starts the pixel; the data is back at r (memory/
@@ -202,6 +205,9 @@ class MainPassTiming {
   size_t size() const { return blocks_.size(); }
   // The first block of those the plain sweep times as fixed delays (size(): none).
   size_t delaying_from() const { return delay_from_; }
+  // Times every block by the recurrence, delays or not (before the first sweep: the
+  // tests' reference for the delays).
+  void time_every_block();
 
  private:
   struct Slot {
@@ -227,12 +233,14 @@ class MainPassTiming {
   // Ideal memory: pixels [first, last) of the packet at the raster, then at span block j.
   template <bool kInspect> void raster_chunk(int first, int last);
   template <bool kInspect, bool kUniform> void span_chunk(size_t j, int first, int last);
-  // The pass's blocks from delay_from_ on that only delay ("Blocks that only delay"):
-  // packet's pixels at block j; which of them still do, given this packet's work.
+  // The packet's pixels at block j, one of the blocks that only delay ("Blocks that only
+  // delay"), timed as a delay.
   void delay_packet(size_t j, int count);
   // Pixels [first, last) of the packet at block j, timed: their `busy` cycles into its
   // histogram, at once where the bin of the first's start holds the last's end.
   void bin_busy(size_t j, int first, int last, uint64_t busy);
+  // Before a packet is timed: ends the delays of the blocks whose work in it differs from
+  // what every pixel before had there, and of those before them in the suffix.
   void keep_delaying(int count);
   // The raster's depth read at cycle t moves `lines`: t waits for a miss entry; returns
   // the cycle its data is back.
