@@ -115,7 +115,8 @@ TEST_CASE("MainPassTiming: the inspected sweep and the plain one count the same"
 // The plain sweep's blocks that only delay (main_pass.hpp, "Blocks that only delay")
 // against the recurrence on every block (time_every_block): random passes whose last
 // blocks have II 1 and the same work (0 or 1) on every pixel, so that the plain sweep
-// times those after the last FIFO of 1 among them as delays; empty packets among them. In half the seeds one
+// times those after the last FIFO of 1 among them as delays; empty packets among
+// them. In half the seeds one
 // of them then takes other work at packet 40 (more work, a lead, or one pixel's work
 // spelled otherwise) and the recurrence takes over from the delays' state. A third line
 // inspects only every other packet (a traced region), mixing both sweeps.
@@ -183,7 +184,6 @@ TEST_CASE("MainPassTiming: blocks that only delay, timed as delays, count as the
     }
     for (auto* line : {&recurrence, &plain, &mixed}) line->settle();
     INFO("seed " << seed << (change ? ", work changed" : ""));
-    CHECK(recurrence.delaying_from() == count);
     CHECK(plain.delaying_from() == expected_from);  // the delays were taken (and ended where the work changed)
     CHECK(mixed.delaying_from() == expected_from);
     delayed += plain.delaying_from() < count;
@@ -204,5 +204,5 @@ TEST_CASE("MainPassTiming: blocks that only delay, timed as delays, count as the
       }
     }
   }
-  CHECK(delayed > 100);  // (most seeds end with some block still delaying)
+  CHECK(delayed > 100);  // (coverage, not the code: most seeds must end with a block still delaying)
 }

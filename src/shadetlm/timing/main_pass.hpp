@@ -240,7 +240,8 @@ class MainPassTiming {
   // histogram, at once where the bin of the first's start holds the last's end.
   void bin_busy(size_t j, int first, int last, uint64_t busy);
   // Before a packet is timed: ends the delays of the blocks whose work in it differs from
-  // what every pixel before had there, and of those before them in the suffix.
+  // what every pixel before had there (or, first seen, is above 1 or has a lead), and of
+  // those before them in the suffix.
   void keep_delaying(int count);
   // The raster's depth read at cycle t moves `lines`: t waits for a miss entry; returns
   // the cycle its data is back.
