@@ -44,6 +44,19 @@ TEST_CASE("MainPassTiming: four pixels through a raster and two blocks, worked b
   CHECK(line.times(2).starved == 6);
 }
 
+namespace {
+// The figures a block's timing counted, the same in two timings of one pass.
+void check_same_times(const modules::BlockTimes& a, const modules::BlockTimes& b) {
+  CHECK(a.busy == b.busy);
+  CHECK(a.starved == b.starved);
+  CHECK(a.blocked == b.blocked);
+  CHECK(a.fifo_cycles == b.fifo_cycles);
+  CHECK(a.fifo_peak == b.fifo_peak);
+  CHECK(a.last == b.last);
+  CHECK(a.busy_per_bin == b.busy_per_bin);
+}
+}  // namespace
+
 // The sweep has two forms (timing.hpp, "Order of the sweep"): inspected (every time
 // kept, as the timing log and the clocked reference see them) and not (a block's uniform
 // work folded, its FIFO's oldest pixel no longer followed once the peak is the depth).
@@ -95,19 +108,8 @@ TEST_CASE("MainPassTiming: the inspected sweep and the plain one count the same"
     for (size_t j = 0; j < blocks.size(); ++j) {
       const modules::BlockTimes &a = inspected.times(int(j)), &b = plain.times(int(j)), &c = spelled.times(int(j));
       INFO("block " << j);
-      CHECK(c.busy == b.busy);
-      CHECK(c.blocked == b.blocked);
-      CHECK(c.fifo_cycles == b.fifo_cycles);
-      CHECK(c.fifo_peak == b.fifo_peak);
-      CHECK(c.last == b.last);
-      CHECK(a.busy == b.busy);
-      CHECK(a.starved == b.starved);
-      CHECK(a.blocked == b.blocked);
-      CHECK(a.fifo_cycles == b.fifo_cycles);
-      CHECK(a.fifo_peak == b.fifo_peak);
-      CHECK(a.last == b.last);
-      CHECK(a.busy_per_bin == b.busy_per_bin);
-      CHECK(c.busy_per_bin == b.busy_per_bin);
+      check_same_times(a, b);
+      check_same_times(c, b);
     }
   }
 }
@@ -194,13 +196,7 @@ TEST_CASE("MainPassTiming: blocks that only delay, timed as delays, count as the
       for (const auto* line : {&plain, &mixed}) {
         const modules::BlockTimes& b = line->times(int(j));
         INFO("block " << j << (line == &mixed ? ", every other packet inspected" : ""));
-        CHECK(a.busy == b.busy);
-        CHECK(a.starved == b.starved);
-        CHECK(a.blocked == b.blocked);
-        CHECK(a.fifo_cycles == b.fifo_cycles);
-        CHECK(a.fifo_peak == b.fifo_peak);
-        CHECK(a.last == b.last);
-        CHECK(a.busy_per_bin == b.busy_per_bin);
+        check_same_times(a, b);
       }
     }
   }

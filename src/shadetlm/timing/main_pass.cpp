@@ -56,14 +56,15 @@ MainPassTiming::MainPassTiming(std::vector<Timing> blocks, DramTiming dram) {
   blocks_.back().next_s = room_;
   blocks_.back().next_depth = 1;
   // The blocks that may only delay ("Blocks that only delay"): a suffix, ideal memory.
-  delay_from_ = blocks_.size();
-  while (!dram_ && delay_from_ > 1) {
-    const Timing& t = blocks_[delay_from_ - 1].timing;
+  size_t from = blocks_.size();
+  while (!dram_ && from > 1) {
+    const Timing& t = blocks_[from - 1].timing;
     if (t.ii != 1 || t.latency < 1 || t.line_bytes > 0 || t.fifo_depth < 2) break;
-    --delay_from_;
+    --from;
   }
   delay_work_.assign(blocks_.size(), -1);
-  if (delay_from_ < blocks_.size()) blocks_[delay_from_ - 1].next_s = room_;
+  delay_from_ = blocks_.size();
+  delay_from(from);
   times_.assign(blocks_.size(), std::vector<Times>(64));
   depth_back_.assign(ring_above(blocks_[0].timing.miss_queue), -1);
 }
@@ -315,10 +316,13 @@ void MainPassTiming::bin_busy(size_t j, int first, int last, uint64_t busy) {
     t.add_to_bins(starts[i], uint64_t(j == 0 ? ii : std::max<int64_t>(ii * int64_t(blocks_[j].w[i]), 1)));
 }
 
-void MainPassTiming::time_every_block() {
-  if (delay_from_ < blocks_.size()) blocks_[delay_from_ - 1].next_s = blocks_[delay_from_].s;
-  delay_from_ = blocks_.size();
+void MainPassTiming::delay_from(size_t from) {
+  if (delay_from_ < blocks_.size()) blocks_[delay_from_ - 1].next_s = blocks_[delay_from_].s;  // its FIFO may fill
+  delay_from_ = from;
+  if (delay_from_ < blocks_.size()) blocks_[delay_from_ - 1].next_s = room_;  // never full
 }
+
+void MainPassTiming::time_every_block() { delay_from(blocks_.size()); }
 
 void MainPassTiming::keep_delaying(int count) {
   if (count == 0) return;
@@ -334,10 +338,7 @@ void MainPassTiming::keep_delaying(int count) {
       same = same && w.each == uint32_t(kept) && w.first() == uint32_t(kept);
     if (!same) from = j + 1;
   }
-  if (from == delay_from_) return;
-  blocks_[delay_from_ - 1].next_s = blocks_[delay_from_].s;  // its FIFO may fill now
-  delay_from_ = from;
-  if (delay_from_ < blocks_.size()) blocks_[delay_from_ - 1].next_s = room_;
+  if (from != delay_from_) delay_from(from);
 }
 
 void MainPassTiming::sweep(const SpanPacket& p, uint64_t hidden_before, const std::vector<StepLines>& misses) {

@@ -243,6 +243,9 @@ class MainPassTiming {
   // what every pixel before had there (or, first seen, is above 1 or has a lead), and of
   // those before them in the suffix.
   void keep_delaying(int count);
+  // The delays from block `from` on (size(): none), the block before them looking at no
+  // FIFO of theirs.
+  void delay_from(size_t from);
   // The raster's depth read at cycle t moves `lines`: t waits for a miss entry; returns
   // the cycle its data is back.
   int64_t depth_read(int64_t& t, uint32_t lines);
