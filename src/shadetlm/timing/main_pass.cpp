@@ -286,21 +286,28 @@ void MainPassTiming::span_chunk(size_t j, int first, int last) {
   b.head = int64_t(n_) + std::max<int64_t>(head, last - depth);
 }
 
-// Block j's pixels of the packet, as it only delays them ("Blocks that only delay"):
-// each starts the cycle after the block before handed it on and is handed on when done.
-void MainPassTiming::delay_packet(size_t j, int count) {
-  Slot& b = blocks_[j];
-  const int64_t* const before = blocks_[j - 1].d + at(n_);
-  int64_t* const starts = b.s + at(n_);
-  int64_t* const handed = b.d + at(n_);
-  const int64_t done = delay_work_[j] > 0 ? b.latency : 1;  // s + II·(w − 1) + L, or s + 1
-  for (int i = 0; i < count; ++i) starts[i] = before[i] + 1, handed[i] = before[i] + 1 + done;
-  b.t.busy += uint64_t(count);         // one cycle a pixel (II·w or 1)
-  b.t.fifo_cycles += uint64_t(count);  // in its FIFO from the end of cycle d_{j−1} to s
-  b.t.fifo_peak = std::max<uint64_t>(b.t.fifo_peak, 1);
-  b.free = starts[count - 1] + 1, b.t.last = handed[count - 1];
-  b.head = int64_t(n_) + count;  // every pixel started before the next comes in
-  if (b.t.bin_cycles > 0) bin_busy(j, 0, count, uint64_t(count));
+// The packet's pixels at the blocks that only delay ("Blocks that only delay"): each
+// starts the cycle after the block before handed it on and is handed on when done. Only
+// their figures are counted, not their windows (main_pass.hpp: no term that reads them
+// binds).
+void MainPassTiming::delay_packet(int count) {
+  const int64_t* const base = blocks_[delay_from_ - 1].d + at(n_);  // the base block's hand-overs
+  int64_t after = 1;  // from the base block's hand-over to the start at block j
+  for (size_t j = delay_from_; j < blocks_.size(); ++j) {
+    Slot& b = blocks_[j];
+    const int64_t done = delay(j), first = base[0] + after, last = base[count - 1] + after;
+    b.t.busy += uint64_t(count);         // one cycle a pixel (II·w or 1)
+    b.t.fifo_cycles += uint64_t(count);  // in its FIFO from the end of cycle d_{j−1} to s
+    b.t.fifo_peak = std::max<uint64_t>(b.t.fifo_peak, 1);
+    b.free = last + 1, b.t.last = last + done;
+    b.head = int64_t(n_) + count;  // every pixel started before the next comes in
+    if (b.t.bin_cycles > 0) {  // (bin_busy, the starts being the base's hand-overs + after)
+      if (uint64_t(first) / b.t.bin_cycles == uint64_t(last) / b.t.bin_cycles) b.t.add_to_bins(first, uint64_t(count));
+      else
+        for (int i = 0; i < count; ++i) b.t.add_to_bins(base[i] + after, 1);
+    }
+    after += done + 1;
+  }
 }
 
 void MainPassTiming::bin_busy(size_t j, int first, int last, uint64_t busy) {
@@ -381,8 +388,7 @@ void MainPassTiming::sweep(const SpanPacket& p, uint64_t hidden_before, const st
           else span_chunk<false, true>(j, first, last);
       }
     }
-    if (count > 0)
-      for (size_t j = timed; j < blocks; ++j) delay_packet(j, count);
+    if (count > 0 && timed < blocks) delay_packet(count);
     n_ += uint64_t(count);
   }
   if (log_) log_->pixels(p, hidden_before, *this);

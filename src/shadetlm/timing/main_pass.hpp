@@ -46,7 +46,11 @@
 // at a time, and the block before it looks at no FIFO after it. A packet with other work
 // at one of them ends that, from its first pixel and for the rest of the frame, for that
 // block and every one before it in the suffix (keep_delaying): the recurrence times them
-// from there, their windows and state the recurrence's all along.
+// from there, their state the recurrence's all along. Their windows are not written (a
+// packet costs them no work a pixel): a term that looks back at a pixel they delayed —
+// after their work changed, or in an inspected packet — is slack by the bounds above,
+// which need only the pixels before n to be delays (C ≥ D + 1 and d(n) ≥ d(n−b) + b), and a
+// window holds an older pixel's time or −1 in its place: smaller, so slack too.
 //
 // Memory (docs/memory.md): a memory client whose pixel moved m > 0 cache lines asks the
 // shared DRAM for them as it starts the pixel; the data is back at r (memory/
@@ -233,9 +237,11 @@ class MainPassTiming {
   // Ideal memory: pixels [first, last) of the packet at the raster, then at span block j.
   template <bool kInspect> void raster_chunk(int first, int last);
   template <bool kInspect, bool kUniform> void span_chunk(size_t j, int first, int last);
-  // The packet's pixels at block j, one of the blocks that only delay ("Blocks that only
-  // delay"), timed as a delay.
-  void delay_packet(size_t j, int count);
+  // The packet's pixels at the blocks that only delay ("Blocks that only delay"), timed
+  // as delays: their figures only, not their windows.
+  void delay_packet(int count);
+  // Block j's delay, one that only delays: done L after its start, or 1 when bypassed.
+  int64_t delay(size_t j) const { return delay_work_[j] > 0 ? blocks_[j].latency : 1; }
   // Pixels [first, last) of the packet at block j, timed: their `busy` cycles into its
   // histogram, at once where the bin of the first's start holds the last's end.
   void bin_busy(size_t j, int first, int last, uint64_t busy);
