@@ -24,8 +24,11 @@ OPS = ["add", "mul", "div", "sqrt", "rsqrt", "lut", "fetch"]  # `line` is a cost
 ERR_FLOOR = 1e-9  # a run equal to the golden model still needs a place on a log axis
 
 
+PROGRAM = "plot"  # the name its refusals start with (a script that imports it sets its own)
+
+
 def fail(message):
-    print("plot: " + message, file=sys.stderr)
+    print(PROGRAM + ": " + message, file=sys.stderr)
     sys.exit(2)
 
 

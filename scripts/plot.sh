@@ -5,7 +5,8 @@
 # one page, out/plots/index.html; prints the tables of Pareto-optimal configurations per
 # scene (against wall time, against cycles).
 # Usage: scripts/plot.sh [--doc] [SWEEP_CSV]   (--doc: the tables into docs/benchmarks.md,
-#   between its markers, and the PNGs to docs/images/sweep-*.png, which it shows)
+#   between its markers, with the figures its prose draws on (scripts/sweep-findings.py),
+#   and the PNGs to docs/images/sweep-*.png, which it shows)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 doc=0
@@ -13,9 +14,12 @@ doc=0
 "$root/scripts/setup.sh" gnuplot-nox
 plots=$root/out/plots
 rm -f "$plots"/*.png  # only this run's plots, for --doc to copy
-report=(python3 "$root/scripts/plot.py" "${1:-$root/out/sweep/sweep.csv}" "$plots")
+csv=${1:-$root/out/sweep/sweep.csv}
+report=(python3 "$root/scripts/plot.py" "$csv" "$plots")
 if ((doc)); then
   python3 "$root/scripts/doc-tables.py" --run "$root/docs/benchmarks.md" pareto 2 -- "${report[@]}"
+  python3 "$root/scripts/doc-tables.py" --run "$root/docs/benchmarks.md" findings 5 -- \
+    python3 "$root/scripts/sweep-findings.py" "$csv" >/dev/null
   for png in "$plots"/*.png; do cp "$png" "$root/docs/images/sweep-$(basename "$png")"; done
 else
   "${report[@]}"

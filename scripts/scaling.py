@@ -66,10 +66,11 @@ for side in [256, 512, 1024, 2048, 4096]:
     covered = s["pixels"]["shaded"]
     px.append(covered), times.append(s["wall_s"]), mems.append(mem), sizes.append(side * side)
     print("| %d² | %d | %.4f | %.1f | %.1f |" % (side, covered, s["wall_s"], 1e9 * s["wall_s"] / covered, mem))
+print("\n| linear fit | fixed part | per unit | R² |\n|---|---|---|---|")
 a, b, r2 = fit(px, times)
-print("\nFit: time = %.4f s + %.1f ns × covered pixels (R² = %.5f)." % (a, b * 1e9, r2))
+print("| time | %.4f s | %.1f ns a covered pixel | %.5f |" % (a, b * 1e9, r2))
 a, b, r2 = fit(sizes, mems)
-print("Fit: memory = %.1f MiB + %.1f bytes × pixels of the frame (R² = %.5f).\n" % (a, b * 1024 * 1024, r2))
+print("| memory | %.1f MiB | %.1f bytes a pixel of the frame | %.5f |\n" % (a, b * 1024 * 1024, r2))
 
 print("## Triangles (a sphere at 512²)\n")
 print("| triangles | covered pixels | wall time (s) | µs per triangle | peak memory (MiB) |")
@@ -83,10 +84,11 @@ for target in [1e3, 1e4, 1e5, 1e6]:
     n = s["triangles"]["in"]
     tris.append(n), times.append(s["wall_s"]), mems.append(mem)
     print("| %d | %d | %.4f | %.3f | %.1f |" % (n, s["pixels"]["shaded"], s["wall_s"], 1e6 * s["wall_s"] / n, mem))
+print("\n| linear fit | fixed part | per unit | R² |\n|---|---|---|---|")
 a, b, r2 = fit(tris, times)
-print("\nFit: time = %.4f s + %.3f µs × triangles (R² = %.5f)." % (a, b * 1e6, r2))
+print("| time | %.4f s | %.3f µs a triangle | %.5f |" % (a, b * 1e6, r2))
 a, b, r2 = fit(tris, mems)
-print("Fit: memory = %.1f MiB + %.1f bytes × triangles (R² = %.5f)." % (a, b * 1024 * 1024, r2))
+print("| memory | %.1f MiB | %.1f bytes a triangle | %.5f |" % (a, b * 1024 * 1024, r2))
 for name in os.listdir(TMP):
     os.remove(os.path.join(TMP, name))
 os.rmdir(TMP)

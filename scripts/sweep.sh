@@ -42,6 +42,7 @@ total=$("${sweep[@]}" --list "${filters[@]}")  # (a bad option stops here, the l
 rm -rf "$results/shards" "$results/sweep.csv"
 "${sweep[@]}" --plan "$results" --shards "$jobs" "${filters[@]}" >/dev/null
 export SWEEP_ROOT=$root SWEEP_BIN=$bin SWEEP_JOBS=$jobs SWEEP_RESULTS=$results
+SECONDS=0  # (each pass's time, printed at the end)
 seq 0 $((jobs - 1)) | xargs -P "$jobs" -I{} sh -c \
   'exec python3 "$SWEEP_ROOT/scripts/sweep.py" "$SWEEP_BIN" "$SWEEP_ROOT" --shard {}/$SWEEP_JOBS --results "$SWEEP_RESULTS" "$@"' \
   sh "${filters[@]}" &
@@ -59,5 +60,7 @@ wait $runs || { echo "sweep.sh: a shard failed (its message is above): nothing m
 rm -f "$results"/shards/*.progress
 # The shards' wall times come from runs sharing the cores with each other: the merge
 # times every run again, one at a time (error, cycles and operations do not change).
+error_pass=$SECONDS
 "${sweep[@]}" --merge "$results" --repeats "$repeats" "${filters[@]}"
-echo "$(($(wc -l <"$results/sweep.csv") - 1)) runs: $results/sweep.csv"
+echo "$(($(wc -l <"$results/sweep.csv") - 1)) runs: $results/sweep.csv (the error pass, $jobs shards at a time:" \
+  "$error_pass s; the merge and timing pass, $repeats rounds one run at a time: $((SECONDS - error_pass)) s)"

@@ -283,6 +283,18 @@ for r in plot.load(sys.argv[2]): print(r["label"])' "$scripts" "$1")
 }
 expect plot-labels-unique [ "$(labels cones.csv)" == $'cone 64\nrelaxed cone 64\nrelaxed cone 64 float16' ]
 
+# --- sweep-findings.py: the prose's figures, from the rows (here: exact's operations
+# 50 % above forward difference's on the sphere; the spans of the two runs).
+frow() {  # frow RUN MODE ADDS CYCLES: a sphere run of that normalize mode and those additions
+  echo "$1,normal,golden/sphere/scene.json,normal_interp.mode=perspective;normalize.mode=$2;number_format=float32,0.01,$4,100,$3,0,0,0,0,0,0,0,1e-06,1e-07,140,0.01,0.01,0.01,0.01,1"
+}
+csv findings.csv "$(frow 0 forward-difference 100 2000)" "$(frow 1 exact 150 1000)"
+ok findings sweep-findings.py findings.csv
+expect findings-ops grep -qF '| sphere | exact | 1000 | +50 % |' "$tmp/stdout"
+expect findings-span grep -qF '| normal | sphere | 2 | 10.0 | 1000–2000 | 100–150 |' "$tmp/stdout"
+bad findings-usage "usage" sweep-findings.py
+bad findings-wall "row 1: wall_s is 'abc'" sweep-findings.py wall-abc.csv
+
 # --- The reports and helpers: their arguments.
 bad scaling-usage "usage" scaling.py "$bin"
 bad radicand-no-program "nobin" radicand-report.py ./nobin "$src"
