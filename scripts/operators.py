@@ -8,8 +8,8 @@ the library, their power from a unit of registers alone), so a row is the operat
 logic.
 
   add      a + b (W bits, wrapping: the model's saturation is a compare and a select more)
-  mul      a · b of fixed:I.F, rounded to nearest at F fraction bits (the full product, then
-           an increment)
+  mul      a · b of fixed:I.F, rounded to nearest at F fraction bits (the product's bits the
+           rounded result needs, then an increment: Yosys drops the columns above them)
   div      a / b of fixed:I.F, to nearest: (a · 2^F + b/2) / b, unsigned
   sqrt     √a of fixed:I.F, to nearest: ⌊√(a · 2^F)⌋ digit by digit (rtl/normalize's
            fx_isqrt), rounded up when the remainder exceeds the root
@@ -25,9 +25,11 @@ the clock period: the energy of one operation a cycle.
 Usage: scripts/operators.py [--doc] [--fresh] [--jobs N] [--widths "8 12 ..."] [--ops "add mul ..."]
        scripts/operators.py --check   the 8-bit add and mul through the flow (ctest operators_flow)
   --doc    the tables into docs/rtl.md between its <!-- operators:N --> markers
-  --fresh  forget the rows of earlier runs (out/cells/operators.json; by default a run's rows
-           join those measured on the same flow, library and tools)
+  --fresh  synthesize again what out/cells/operators.json holds (by default a row saved by an
+           earlier run on the same flow, library and tools is taken as it is, and only the
+           missing ones are synthesized)
 Exit 2 on bad arguments or a missing tool (naming its Debian package); 1 if a synthesis fails."""
+import functools
 import hashlib
 import inspect
 import json
@@ -96,6 +98,7 @@ def measure(text, work):
     return area, sum(n for c, n in counts.items() if c.startswith("DFF")), period, power
 
 
+@functools.lru_cache(maxsize=None)
 def flop_costs(w):
     """A flip-flop's area (the library's DFFPOSX1) and power at the model's clock (the
     registers-only unit's, per flip-flop)."""
@@ -121,8 +124,8 @@ def fingerprint():
     """The flow (cells.py's synthesis and timing, this script's units), the library and the
     tools' versions: what a saved row was measured on."""
     h = hashlib.sha256()
-    for f in (cells.synthesize, cells.sta, cells.min_period, cells.register_overhead, source, registers_only,
-              measure, flop_costs, row):
+    for f in (cells.synthesize, cells.sta, cells.min_period, cells.register_overhead, cells.cell_areas, source,
+              registers_only, measure, flop_costs, row):
         h.update(inspect.getsource(f).encode() + b"\0")
     for path in (ISQRT, pathlib.Path(cells.LIBERTY)):
         h.update(path.read_bytes() + b"\0")
@@ -166,6 +169,9 @@ def tables(rows):
             continue
         texts = []
         for key in ("area_um2", "energy_pj"):
+            if any(r[key] <= 0 for _, r in pts):  # (an energy below the registers' own: no power law)
+                texts += ["–", "–"]
+                continue
             c, k, r2 = power_law([(w, r[key]) for w, r in pts])
             texts += ["%.4g · W^%.2f" % (c, k), "%.4f" % r2]
         out.append("| %s | %s | %s | %s | %s |" % (o, *texts))
@@ -196,49 +202,65 @@ def check():
 
 def main(argv):
     ops, widths, doc, fresh, jobs = OPS, WIDTHS, False, False, os.cpu_count() or 1
+    usage = "usage: scripts/operators.py [--doc] [--fresh] [--jobs N] [--widths \"8 12 ...\"] [--ops \"add ...\"] | --check"
     args = list(argv)
     while args:
         a = args.pop(0)
-        if a == "--check":
+        if a == "--check" and not argv[1:]:
             cells.tools()
             return check()
         if a == "--doc":
             doc = True
         elif a == "--fresh":
             fresh = True
-        elif a == "--jobs" and args and args[0].isdigit() and int(args[0]) > 0:
+        elif a == "--jobs":
+            if not args or not args[0].isdigit() or int(args[0]) < 1:
+                fail("--jobs: a positive whole number of syntheses at once")
             jobs = int(args.pop(0))
-        elif a in ("--widths", "--ops") and args:
-            value = args.pop(0).split()
-            if a == "--ops":
-                bad = [o for o in value if o not in OPS]
-                if bad or not value:
-                    fail(f"--ops: {' '.join(bad) or 'none'}: operations are {', '.join(OPS)}")
-                ops = value
-            else:
-                if not value or not all(re.fullmatch(r"[0-9]+", w) and 4 <= int(w) <= 25 for w in value):
-                    fail("--widths: whole numbers of bits from 4 to 25 (fixed:I.F with I + F ≤ 24)")
-                widths = [int(w) for w in value]
+        elif a == "--ops":
+            value = args.pop(0).split() if args else []
+            bad = [o for o in value if o not in OPS]
+            if bad or not value:
+                fail(f"--ops: {' '.join(bad) or 'none given'}: the operations are {', '.join(OPS)}")
+            ops = value
+        elif a == "--widths":
+            value = args.pop(0).split() if args else []
+            if not value or not all(re.fullmatch(r"[0-9]+", w) and 4 <= int(w) <= 25 for w in value):
+                fail("--widths: whole numbers of bits from 4 to 25 (fixed:I.F with I + F ≤ 24)")
+            widths = [int(w) for w in value]
         else:
-            fail(f"{a}: unknown argument\n" + next(p for p in __doc__.split("\n\n") if p.startswith("Usage:")))
+            fail(f"{a}: unknown argument ({usage})")
     cells.tools()
     stamp = fingerprint()
     out = cells.ROOT / "out/cells"
     out.mkdir(parents=True, exist_ok=True)
     saved = out / "operators.json"
     rows = {}
-    if not fresh and saved.exists():
-        try:
-            rows = {(r["op"], r["width"]): r for r in json.loads(saved.read_text()) if r.get("flow") == stamp}
-        except (ValueError, KeyError, TypeError):
-            print(f"operators.py: {saved}: not its rows, dropped", file=sys.stderr)
+    try:
+        earlier = json.loads(saved.read_text()) if saved.exists() else []
+        if not isinstance(earlier, list):
+            raise ValueError("not a list")
+        for r in earlier:
+            if r.get("flow") == stamp:
+                rows[(r["op"], r["width"])] = r
+            else:
+                print(f"operators.py: {saved}: {r.get('op')} at {r.get('width')} bits dropped: measured on another "
+                      f"flow, library or tools (fingerprint {r.get('flow')}, now {stamp})", file=sys.stderr)
+    except (OSError, ValueError, KeyError, TypeError, AttributeError) as e:
+        print(f"operators.py: {saved}: not its rows ({e}), dropped", file=sys.stderr)
+        rows = {}
+    wanted = [(o, w) for w in widths for o in ops if fresh or (o, w) not in rows]
     with tempfile.TemporaryDirectory(prefix="operators-") as tmp:
         overhead = cells.register_overhead(pathlib.Path(tmp))
-    lock = threading.Lock()
+    lock, failed = threading.Lock(), None
     with ThreadPoolExecutor(max_workers=jobs) as pool:
-        running = {pool.submit(row, o, w, overhead): (o, w) for w in widths for o in ops}
+        running = {pool.submit(row, o, w, overhead): (o, w) for o, w in wanted}
         for done in as_completed(running):
-            r = dict(done.result(), flow=stamp)
+            try:
+                r = dict(done.result(), flow=stamp)
+            except SystemExit as e:  # (its synthesis failed, said already: the others still run and are saved)
+                failed = failed or e
+                continue
             with lock:  # each row saved as it completes, whole (a kill keeps the others)
                 rows[(r["op"], r["width"])] = r
                 tmp = saved.with_name(saved.name + ".tmp")
@@ -246,6 +268,8 @@ def main(argv):
                                           indent=1) + "\n")
                 os.replace(tmp, saved)
             print(f"operators.py: {r['op']} at {r['width']} bits done", file=sys.stderr)
+    if failed:
+        raise failed
     text = tables(list(rows.values()))
     print(f"Register overhead (clock-to-Q + setup of DFFPOSX1): {overhead:.3f} ns; inputs switching {ACTIVITY} "
           f"times a cycle; energy at {cells.CLOCK_MHZ} MHz.\n")

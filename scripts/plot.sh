@@ -17,9 +17,10 @@ rm -f "$plots"/*.png  # only this run's plots, for --doc to copy
 csv=${1:-$root/out/sweep/sweep.csv}
 report=(python3 "$root/scripts/plot.py" "$csv" "$plots")
 if ((doc)); then
-  python3 "$root/scripts/doc-tables.py" --run "$root/docs/benchmarks.md" pareto 2 -- "${report[@]}"
+  # (The findings first: a CSV they refuse leaves the page as it was.)
   python3 "$root/scripts/doc-tables.py" --run "$root/docs/benchmarks.md" findings 5 -- \
     python3 "$root/scripts/sweep-findings.py" "$csv" >/dev/null
+  python3 "$root/scripts/doc-tables.py" --run "$root/docs/benchmarks.md" pareto 2 -- "${report[@]}"
   for png in "$plots"/*.png; do cp "$png" "$root/docs/images/sweep-$(basename "$png")"; done
 else
   "${report[@]}"

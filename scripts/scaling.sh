@@ -4,11 +4,11 @@
 # Usage: scripts/scaling.sh [--doc]   (--doc: its four tables into docs/benchmarks.md)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+[[ $# == 0 || ($# == 1 && $1 == --doc) ]] || { echo "usage: scripts/scaling.sh [--doc]" >&2; exit 2; }
 "$root/scripts/setup.sh"
 "$root/scripts/build.sh" >/dev/null
 report=(python3 "$root/scripts/scaling.py" "$root/build/app/shadetlm" "$root")
 if [[ ${1:-} == --doc ]]; then
   exec python3 "$root/scripts/doc-tables.py" --run "$root/docs/benchmarks.md" scaling 4 -- "${report[@]}"
 fi
-(($# == 0)) || { echo "usage: scripts/scaling.sh [--doc]" >&2; exit 2; }
 exec "${report[@]}"

@@ -62,5 +62,7 @@ rm -f "$results"/shards/*.progress
 # times every run again, one at a time (error, cycles and operations do not change).
 error_pass=$SECONDS
 "${sweep[@]}" --merge "$results" --repeats "$repeats" "${filters[@]}"
+timing="the merge and timing pass, $repeats rounds one run at a time"
+((repeats > 0)) || timing="the merge"
 echo "$(($(wc -l <"$results/sweep.csv") - 1)) runs: $results/sweep.csv (the error pass, $jobs shards at a time:" \
-  "$error_pass s; the merge and timing pass, $repeats rounds one run at a time: $((SECONDS - error_pass)) s)"
+  "$error_pass s; $timing: $((SECONDS - error_pass)) s)"
