@@ -18,6 +18,10 @@ struct Command {
   std::function<int()> run;  // runs it once parsed; returns the exit code
 };
 
+// --help without CLI11's type words: each option of `app` and its subcommands shows what
+// it takes (FILE.exr, a choice, FLOAT in [a, b]) rather than "TEXT:NOT EMPTY:FILE.exr".
+void tidy_help(CLI::App& app);
+
 // For a command line CLI11 refused: "unknown command 'rendr': did you mean 'render'?" when
 // a subcommand or option is a typo away from one it has ("" otherwise).
 std::string suggestion(const CLI::App& app, int argc, char** argv);

@@ -151,6 +151,30 @@ CLI::Validator finite_in(double min, double max) {
       "FINITE in [" + CLI::detail::to_string(min) + ", " + CLI::detail::to_string(max) + "]");
 }
 
+void tidy_help(CLI::App& app) {
+  for (CLI::Option* o : app.get_options()) {
+    if (o->get_type_size() == 0) continue;  // a flag
+    // "TEXT:NOT EMPTY:FILE.exr": the value's type, then each check's description.
+    std::string parts = o->get_type_name(), shown;
+    for (size_t at = 0, k = 0; at <= parts.size(); ++k) {
+      const size_t end = std::min(parts.find(':', at), parts.size());
+      std::string part = parts.substr(at, end - at);
+      at = end + 1;
+      if (k == 0) shown = part;  // TEXT, FLOAT, INT …
+      else if (part == "NOT EMPTY") continue;  // (said by the refusal, if it comes)
+      else if (part.rfind("FINITE in ", 0) == 0) shown += part.substr(6);  // FLOAT in [a, b]
+      else shown = part;  // a file's kind or the choices say more than the type
+    }
+    for (int k = 0;; ++k) try {
+        o->get_validator(k)->description("");
+      } catch (const CLI::OptionNotFound&) {
+        break;
+      }
+    o->type_name(shown);
+  }
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) tidy_help(*sub);
+}
+
 uint64_t replace_nonfinite(core::Frame& frame) {
   uint64_t replaced = 0;
   for (auto& channel : frame.channels)

@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
                                         app::add_compare_command(app), app::add_bench_command(app),
                                         app::add_precompute_command(app), app::add_parallax_bench_command(app),
                                         app::add_timing_check_command(app)};
+  app::tidy_help(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

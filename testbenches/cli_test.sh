@@ -30,6 +30,16 @@ expect_no_file() {
 }
 
 check version 0 "$bin" --version
+# --help names what an option takes, not CLI11's type words (TEXT:NOT EMPTY:FILE.exr).
+for command in "" render reference compare bench precompute parallax-bench timing-check; do
+  check "help $command" 0 "$bin" $command --help
+  if grep -qE 'NOT EMPTY|TEXT:|FLOAT:|FINITE' "$tmp/out"; then
+    echo "FAIL help $command: CLI11's type words:"; grep -E 'NOT EMPTY|TEXT:|FLOAT:|FINITE' "$tmp/out" | sed 's/^/    /'; ((failures++))
+  else ((passes++)); fi
+done
+check help-output 0 "$bin" render --help
+expect_output help-output "-o,--output FILE.exr=out/frame.exr"
+expect_output help-output "--heat-max FLOAT in [1, 1e+06]=32"
 check demo 0 "$bin" reference -o "$tmp/demo.exr" --preview "$tmp/demo.png"
 [[ -s $tmp/demo.exr && -s $tmp/demo.png ]] && ((passes++)) || { echo "FAIL demo: no frame"; ((failures++)); }
 check same 0 "$bin" compare "$tmp/demo.exr" "$tmp/demo.exr"
