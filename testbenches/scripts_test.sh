@@ -293,6 +293,8 @@ ok findings sweep-findings.py findings.csv
 expect findings-ops grep -qF '| sphere | exact | 1000 | +50 % |' "$tmp/stdout"
 expect findings-span grep -qF '| normal | sphere | 2 | 10.0 | 1000–2000 | 100–150 |' "$tmp/stdout"
 bad findings-usage "usage" sweep-findings.py
+bad calibrate-usage "usage" calibrate.py --x
+bad operators-ops "--ops" operators.py --ops nothing
 bad findings-wall "row 1: wall_s is 'abc'" sweep-findings.py wall-abc.csv
 
 # --- The reports and helpers: their arguments.
