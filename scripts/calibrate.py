@@ -8,8 +8,8 @@ The model's view of the unit as written (one combinational step a pixel, then th
 latency's registers):
   - a unit of each kind for each operation a pixel (rounded up: the packet's seed counts
     in the average), at the format's word W = 1 + I + F, priced by the operators' power
-    law in W; a correctly rounded 1/√ (forward-difference mode) as a square root and a
-    division, as the RTL computes it;
+    law in W (sums and products as the saturating operators); a correctly rounded 1/√
+    (forward-difference mode) as a square root and a division, as the RTL computes it;
   - the pixels in flight, ⌈(L + 1) / II⌉ results of 3 words each, as flip-flops;
   - energy a pixel: each operation's energy, and each flip-flop's for II cycles, scaled
     from the operators' input activity (0.5) to the unit's measured one, as dynamic
@@ -31,7 +31,10 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cells  # noqa: E402
 import operators  # noqa: E402
 
-KINDS = {"add": ["add"], "mul": ["mul"], "div": ["div"], "sqrt": ["sqrt"], "rsqrt": ["sqrt", "div"]}
+# The operators each counted operation is priced as: the model's fixed-point type
+# saturates its sums and products (its divisions too, whose saturating form is not
+# characterized: the plain divider stands in).
+KINDS = {"add": ["add_sat"], "mul": ["mul_sat"], "div": ["div"], "sqrt": ["sqrt"], "rsqrt": ["sqrt", "div"]}
 
 
 def fail(message):

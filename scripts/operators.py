@@ -13,6 +13,8 @@ logic.
   div      a / b of fixed:I.F, to nearest: (a · 2^F + b/2) / b, unsigned
   sqrt     √a of fixed:I.F, to nearest: ⌊√(a · 2^F)⌋ digit by digit (rtl/normalize's
            fx_isqrt), rounded up when the remainder exceeds the root
+  add_sat  a + b saturating at the format's limits, as the model's fixed-point type adds
+  mul_sat  mul saturating: the whole product kept to see whether it fits
   compare  a < b (signed)
   mux      s ? a : b
   register one W-bit register (its flip-flops alone: area from the library, energy from
@@ -45,7 +47,7 @@ from concurrent.futures import ThreadPoolExecutor, as_completed
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cells  # noqa: E402  (the flow: synthesize, sta, the library)
 
-OPS = ["add", "mul", "div", "sqrt", "compare", "mux", "register"]
+OPS = ["add", "mul", "div", "sqrt", "add_sat", "mul_sat", "compare", "mux", "register"]
 WIDTHS = [8, 12, 16, 20, 24]
 ACTIVITY = 0.5  # transitions a cycle of each input bit: random data
 ISQRT = cells.RTL / "fx_isqrt.sv"
@@ -71,6 +73,12 @@ def source(op, w):
                  f"  wire [{w - 1}:0] root;\n  wire [{w + 1}:0] rem;\n"
                  f"  fx_isqrt #(.N({w})) isqrt (.v(v), .root(root), .rem(rem));\n"
                  f"  wire [{w - 1}:0] r = root + ({{2'b00, root}} < rem ? {w}'d1 : {w}'d0);"),
+        "add_sat": (f"wire signed [{w}:0] t = $signed(ra) + $signed(rb);\n"
+                    f"  wire [{w - 1}:0] r = t[{w}] == t[{w - 1}] ? t[{w - 1}:0] : {{t[{w}], {{{w - 1}{{!t[{w}]}}}}}};"),
+        "mul_sat": (f"wire signed [{2 * w - 1}:0] p = $signed(ra) * $signed(rb);\n"
+                    f"  wire signed [{2 * w - 1}:0] q = (p + ({2 * w}'sd1 <<< {f - 1})) >>> {f};\n"
+                    f"  wire fits = q[{2 * w - 1}:{w - 1}] == {{{w + 1}{{q[{2 * w - 1}]}}}};\n"
+                    f"  wire [{w - 1}:0] r = fits ? q[{w - 1}:0] : {{q[{2 * w - 1}], {{{w - 1}{{!q[{2 * w - 1}]}}}}}};"),
         "compare": f"wire [{w - 1}:0] r = {{{w - 1}'d0, $signed(ra) < $signed(rb)}};",
         "mux": f"wire [{w - 1}:0] r = rs ? ra : rb;",
         "register": f"wire [{w - 1}:0] r = ra ^ rb;",  # (only its flip-flops are kept: see row())
