@@ -11,9 +11,10 @@ latency's registers):
     law in W (sums and products as the saturating operators); a correctly rounded 1/√
     (forward-difference mode) as a square root and a division, as the RTL computes it;
   - the pixels in flight, ⌈(L + 1) / II⌉ results of 3 words each, as flip-flops;
-  - energy a pixel: each operation's energy, and each flip-flop's for II cycles, scaled
-    from the operators' input activity (0.5) to the unit's measured one, as dynamic
-    power is proportional to it (an assumption, stated).
+  - energy a pixel: each operation's energy scaled from the operators' input activity
+    (0.5 a cycle) to the unit's measured one over the II cycles of a pixel, as if
+    dynamic power were proportional to it (an assumption, stated); each flip-flop's for
+    II cycles as measured (its clock switches every cycle, whatever the data).
 The counts come from a render of golden/sphere at that mode and format (--stats).
 
 Usage: scripts/calibrate.py [--doc]   (--doc: the table into docs/rtl.md between <!-- calibration:1 --> markers)
@@ -71,10 +72,14 @@ def counts(binary, mode, fmt):
         r = subprocess.run([binary, "render", str(cells.ROOT / "golden/sphere/scene.json"), "-o", f"{tmp}/f.exr",
                             "--set", f"pipeline.normalize.mode={mode}", "--set", f"pipeline.normalize.format={fmt}",
                             "--allow-overflow", "--stats", str(stats)], capture_output=True, text=True)
+        last = (r.stderr.strip().splitlines() or ["no message"])[-1][-300:]
         if r.returncode != 0:
-            fail(f"render of {mode} at {fmt}: {r.stderr.strip()[-300:]}")
-        b = json.loads(stats.read_text())["blocks"]["normalize"]
-    return {k: v / b["pixels"] for k, v in b["ops"].items() if v}
+            fail(f"render of {mode} at {fmt} exited {r.returncode}: {last}")
+        try:
+            b = json.loads(stats.read_text())["blocks"]["normalize"]
+            return {k: v / b["pixels"] for k, v in b["ops"].items() if v}
+        except (OSError, ValueError, KeyError, TypeError, ZeroDivisionError) as e:
+            fail(f"render of {mode} at {fmt}: no normalize statistics ({type(e).__name__}: {e})")
 
 
 def estimate(row, ops, law):
@@ -89,12 +94,12 @@ def estimate(row, ops, law):
             continue
         for op in KINDS[kind]:
             area += math.ceil(per_pixel - 1e-9) * price(op, 0)
-            energy += per_pixel * price(op, 1)
+            # The unit's inputs switch `activity` times a cycle, II cycles a pixel.
+            energy += per_pixel * price(op, 1) * row["activity"] * row["ii"] / operators.ACTIVITY
     capacity = -(-(row["latency"] + 1) // row["ii"])
     flops = capacity * 3 * w
     area += flops * price("register", 0) / w
-    energy += flops * price("register", 1) / w * row["ii"]
-    energy *= row["activity"] / operators.ACTIVITY
+    energy += flops * price("register", 1) / w * row["ii"]  # (clocked every cycle: not scaled by the data)
     return area, energy, flops, missing
 
 
@@ -107,7 +112,7 @@ def main(argv):
     if "register" not in law:
         fail(f"{out / 'operators.json'}: no register rows at three widths (scripts/operators.py makes them)")
     binary = os.environ.get("SHADETLM", str(cells.ROOT / "build/app/shadetlm"))
-    if not os.access(binary, os.X_OK):
+    if not (os.path.isfile(binary) and os.access(binary, os.X_OK)):
         fail(f"{binary}: no program (scripts/build.sh builds it)")
     lines = ["| mode | format | operations a pixel | area, flow, mm² | area, model, mm² | error |"
              " flip-flops, flow / model | energy a pixel, flow, pJ | model, pJ | error |",

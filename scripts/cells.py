@@ -203,6 +203,14 @@ def verdict(rows):
     return "\n".join(lines)
 
 
+def report_problems(who, problems):
+    """A check's failures, one a line, then exit 1 (none: nothing)."""
+    for p in problems:
+        print(f"{who}: {p}")
+    if problems:
+        sys.exit(1)
+
+
 def check():
     """One operator through the flow: a registered 12-bit adder. Its area is Yosys's and
     also the sum of its cells' areas in the Liberty file; its period lies above a
@@ -230,10 +238,7 @@ def check():
         problems.append(f"a period of {period} ns, not between the register overhead {overhead} ns and 100 ns")
     if not 0 < slow < fast:
         problems.append(f"power {slow} W at 100 MHz and {fast} W at 200 MHz")
-    for p in problems:
-        print("cells.py --check: " + p)
-    if problems:
-        sys.exit(1)
+    report_problems("cells.py --check", problems)
     print(f"cells.py --check: add12 in {sum(cells.values())} cells, {area:.0f} um^2 (the library's cells sum to it), "
           f"{period:.3f} ns ({1000 / period:.0f} MHz), {slow * 1e3:.3f} mW at 100 MHz, {fast * 1e3:.3f} mW at 200 MHz")
 

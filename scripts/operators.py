@@ -200,10 +200,7 @@ def check():
         problems.append(f"delay: add {add['delay_ns']:.3f}, mul {mul['delay_ns']:.3f} ns")
     if not 0 < add["energy_pj"] < mul["energy_pj"]:
         problems.append(f"energy: add {add['energy_pj']:.4f}, mul {mul['energy_pj']:.4f} pJ")
-    for p in problems:
-        print("operators.py --check: " + p)
-    if problems:
-        sys.exit(1)
+    cells.report_problems("operators.py --check", problems)
     print(f"operators.py --check: 8 bits: add {add['area_um2']:.0f} um^2 {add['delay_ns']:.2f} ns "
           f"{add['energy_pj']:.3f} pJ, mul {mul['area_um2']:.0f} um^2 {mul['delay_ns']:.2f} ns {mul['energy_pj']:.3f} pJ")
 

@@ -31,7 +31,9 @@ expect_no_file() {
 
 check version 0 "$bin" --version
 # --help names what an option takes, not CLI11's type words (TEXT:NOT EMPTY:FILE.exr).
-for command in "" render reference compare bench precompute parallax-bench timing-check; do
+for command in "" render reference compare bench precompute parallax-bench timing-check "precompute normalmap" \
+    "precompute boxgapmap" "precompute donnellymap" "precompute refinedmap" "precompute conemap" \
+    "precompute relaxedconemap"; do
   check "help $command" 0 "$bin" $command --help
   if grep -qE 'NOT EMPTY|TEXT:|FLOAT:|FINITE' "$tmp/out"; then
     echo "FAIL help $command: CLI11's type words:"; grep -E 'NOT EMPTY|TEXT:|FLOAT:|FINITE' "$tmp/out" | sed 's/^/    /'; ((failures++))
