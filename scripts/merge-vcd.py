@@ -2,14 +2,14 @@
 """One waveform of the pipeline's blocks and the RTL normalize unit (docs/rtl.md,
 "Waveforms"): merges the VCD of `shadetlm render --vcd` with the one of
 `shadetlm timing-check --rtl-normalize M --rtl-vcd` made from the same render's timing
-log — the same cycles, as the timing check proves — scaling the RTL's times from one
-nanosecond a cycle to the render's clock period. Writes OUT.vcd and a GTKWave view
+log — the same cycles, as the timing check proves. A cycle is 1 ns in both files, and
+in the merged one (written in ps, as Verilator's is). Writes OUT.vcd and a GTKWave view
 OUT.gtkw beside it (paths relative to it, as the render's view): the normalize block's
 signals, then the RTL unit's pins and counters.
 
-Usage: scripts/merge-vcd.py PIPELINE.vcd RTL.vcd OUT.vcd [--clock-mhz 500]
-Exit 0; 2 with a message naming the file when one is not a VCD it can read or the
-clock is not a positive number; 1 when the output cannot be written (nothing is left)."""
+Usage: scripts/merge-vcd.py PIPELINE.vcd RTL.vcd OUT.vcd
+Exit 0; 2 with a message naming the file when one is not a VCD it can read; 1 when
+the output cannot be written (nothing is left)."""
 import argparse
 import itertools
 import os
@@ -109,18 +109,14 @@ def main():
     ap.add_argument("pipeline")
     ap.add_argument("rtl")
     ap.add_argument("out")
-    ap.add_argument("--clock-mhz", type=float, default=500)
     a = ap.parse_args()
     if not a.out.endswith(".vcd"):
         fail(a.out, "the output must end in .vcd")
-    if not (a.clock_mhz > 0 and a.clock_mhz < 1e6):
-        fail("--clock-mhz", "must be a positive number of MHz")
     p_head, p_steps, p_ps = read(a.pipeline)
     r_head, r_steps, r_ps = read(a.rtl)
-    period_ps = 1e6 / a.clock_mhz
     # New identifiers for every variable of both files (the two files' overlap).
     fresh, rename = identifiers(), [{}, {}]
-    lines = ["$version shadetlm merge-vcd.py $end", "$timescale 1 ps $end"]
+    lines = ["$version shadetlm merge-vcd.py $end", "$timescale 1 ps $end", "$comment one cycle is 1 ns (1000 time units) $end"]
     names = []  # (file, hierarchical name) for the view
     for k, (path, head) in enumerate(((a.pipeline, p_head), (a.rtl, r_head))):
         if k == 1:
@@ -156,11 +152,11 @@ def main():
                 out.append(f"{value} {rename[k][ident]}" if c[0] in "bBrR" else value + rename[k][ident])
             yield round(time * unit_ps), out
 
-    # The RTL's cycle n is at n ns: at n periods of the pipeline's clock.
+    # Each file's cycle n is at n ns (the RTL's clock falls at half cycles: kept in ps).
     merged = {}
     for t, ch in changes(p_steps, 0, p_ps):
         merged.setdefault(t, []).extend(ch)
-    for t, ch in changes(r_steps, 1, r_ps * period_ps / 1000):
+    for t, ch in changes(r_steps, 1, r_ps):
         merged.setdefault(t, []).extend(ch)
     for t in sorted(merged):
         lines.append(f"#{t}")

@@ -315,7 +315,7 @@ bad bench-table-file "nofile.txt" bench-table.py nofile.txt doc.md
 bad bench-table-counts "doc.md: no instruction counts" bench-table.py doc.md doc.md
 bad dem-to-png-zip "not.npz" dem-to-png.py not.npz out.png
 bad vcd-causality-stats "nostats.json" vcd-causality.py trace.vcd nostats.json
-bad merge-vcd-clock "--clock-mhz" merge-vcd.py trace.vcd trace.vcd out.vcd --clock-mhz x
+bad merge-vcd-timescale 'trace.vcd: its $timescale' merge-vcd.py trace.vcd trace.vcd out.vcd
 bad golden-cycles-usage "usage" golden-cycles.py
 bad block-share-args "stdin" block-share.py extra
 bad make-stress-scenes-out "doc.md" make-stress-scenes.py doc.md

@@ -115,7 +115,7 @@ else
   echo "FAIL waveform causality or stalls:"; sed 's/^/    /' "$tmp/c"; ((failures++))
 fi
 cat >"$tmp/bad.vcd" <<'VCD'
-$timescale 1 ps $end
+$timescale 1 ns $end
 $scope module SystemC $end
 $scope module a $end
 $var wire 1 v valid $end
@@ -131,12 +131,12 @@ $var wire 32 T triangle [31:0] $end
 $upscope $end
 $upscope $end
 $enddefinitions $end
-#2000
+#1
 1w
 b101 X
 b11 Y
 b0 T
-#4000
+#2
 0w
 1v
 b101 x

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
@@ -101,9 +102,15 @@ void Tracer::write_vcd(core::OutputSet& outputs, const std::string& path) {
   size_t next_id = 2;  // 0: end_of_trace, 1: cycle
   core::CheckedFile file(outputs.temporary(path), path);
   VcdText vcd(file);
-  vcd << "$version shadetlm " << core::kVersion << " $end\n$timescale 1 ps $end\n$scope module shadetlm $end\n"
+  // One time unit a cycle, the model's own unit, so that a viewer's axis reads cycles.
+  // VCD has no cycle unit: the unit is written as 1 ns (a 1 GHz clock), as the RTL's
+  // waveform is, and the real clock is named in a comment.
+  char period_ps[32];
+  std::snprintf(period_ps, sizeof period_ps, "%.6g", period_.to_seconds() * 1e12);
+  vcd << "$version shadetlm " << core::kVersion << " $end\n$timescale 1 ns $end\n"
+      << "$comment one time unit is one cycle of the model's clock (" << std::string_view(period_ps) << " ps) $end\n"
+      << "$scope module shadetlm $end\n"
       << "$var wire 1 " << vcd_id(0) << " end_of_trace $end\n"
-      // The time in cycles, the model's own unit (the axis is in ps: a cycle is the period).
       << "$var wire 64 " << vcd_id(1) << " cycle [63:0] $end\n";
   auto write_cycle = [&](uint64_t cycle) {
     vcd.binary(cycle);
@@ -150,8 +157,6 @@ void Tracer::write_vcd(core::OutputSet& outputs, const std::string& path) {
     }
     touched.clear();
   };
-  const double ps = period_.to_seconds() * 1e12;
-  auto time_of = [&](uint64_t cycle) { return uint64_t(std::llround(double(cycle) * ps)); };
   vcd << "#0\n$dumpvars\n0" << vcd_id(0) << "\n";
   write_cycle(0);
   dump(true);
@@ -184,7 +189,7 @@ void Tracer::write_vcd(core::OutputSet& outputs, const std::string& path) {
       continue;
     }
     vcd << "#";
-    vcd.number(time_of(cycle));
+    vcd.number(cycle);
     vcd << "\n";
     write_cycle(cycle);
     dump(false);
@@ -193,11 +198,11 @@ void Tracer::write_vcd(core::OutputSet& outputs, const std::string& path) {
   // span fits inside it (GTKWave ignores a start time otherwise), where end_of_trace rises.
   const uint64_t end = std::max<uint64_t>(last_ + (last_ - first_) / 10 + 1, 1);
   vcd << "#";
-  vcd.number(time_of(end));
+  vcd.number(end);
   vcd << "\n1" << vcd_id(0) << "\n";
   write_cycle(end);
   vcd << "#";
-  vcd.number(time_of(end + 1));
+  vcd.number(end + 1);
   vcd << "\n";
   vcd.flush();
   file.close();

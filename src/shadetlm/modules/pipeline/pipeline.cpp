@@ -314,12 +314,11 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect) {
   if (top.tracer()) {
     r.trace_records = top.tracer()->records();
     top.tracer()->write_vcd(outputs, inspect.vcd);
-    const double ps = 1e6 / clock_mhz;
     // The view opens on the first traced packets: a window of kFirstView cycles, where a
     // one-cycle valid pulse is a few pixels wide.
     const uint64_t first = top.tracer()->first_cycle(), last = std::min(top.tracer()->last_cycle(), first + kFirstView);
     write_gtkw(outputs, inspect.vcd.substr(0, inspect.vcd.size() - 4) + ".gtkw", inspect.vcd, top.tracer()->probes(),
-               double(first) * ps, double(last) * ps);
+               first, last);
   }
   if (const Dram* dram = top.line().dram(); dram && inspect.bin_cycles > 0)
     r.dram_bytes_per_bin = regroup(dram->bytes_per_bin(), top.kept_bin(), inspect.bin_cycles);
@@ -342,7 +341,7 @@ std::vector<std::string> vector_files(const PipelineDecl& declaration, const std
 }
 
 void write_gtkw(core::OutputSet& outputs, const std::string& path, const std::string& vcd, const std::vector<Tracer::ProbeInfo>& probes,
-                double from_ps, double to_ps) {
+                uint64_t from, uint64_t to) {
   // GTKWave's save format: "@<flags in hex>" sets how the following signals are
   // drawn, "-text" is a comment line. 28 = binary, right-justified (1-bit valid, ready);
   // 24 = decimal (x, y, triangle); 424 = signed decimal (integer values); 40020 = real,
@@ -353,12 +352,12 @@ void write_gtkw(core::OutputSet& outputs, const std::string& path, const std::st
     out << "[*] shadetlm: the blocks in pipeline order\n"
         << "[dumpfile] \"" << std::filesystem::path(vcd).filename().string() << "\"\n"
         << "[savefile] \"" << std::filesystem::path(path).filename().string() << "\"\n"
-        << "[timestart] " << uint64_t(from_ps) << "\n[size] 1400 900\n[sst_width] 200\n[signals_width] 240\n"
+        << "[timestart] " << from << "\n[size] 1400 900\n[sst_width] 200\n[signals_width] 240\n"
         << "[sst_expanded] 1\n[treeopen] shadetlm.\n";
-    // Zoom: GTKWave 3.3 shows about 4.3·2^-zoom time units (ps here) across its default
-    // wave pane (measured through its Tcl interface); show the window and 5 % more (the
-    // dump runs 10 % past the traced span: a window past the dump's end resets the start).
-    const double zoom = -std::log2(std::max(1.0, (to_ps - from_ps) * 1.05 / 4.3));
+    // Zoom: GTKWave 3.3 shows about 4.3·2^-zoom time units (cycles here) across its
+    // default wave pane (measured through its Tcl interface); show the window and 5 % more
+    // (the dump runs 10 % past the traced span: a window past the dump's end resets the start).
+    const double zoom = -std::log2(std::max(1.0, double(to - from) * 1.05 / 4.3));
     out << "*" << std::fixed << zoom << " -1\n";
     out << "@24\nshadetlm.cycle[63:0]\n";  // the time in cycles, first
     for (const auto& p : probes) {

@@ -89,8 +89,8 @@ RenderResult run_systemc(Pipeline& pipeline, const Inspect& inspect = {});
 
 // Writes a GTKWave save file for `vcd`: the blocks' signals grouped in pipeline
 // order, real values drawn as analog steps.
-// The view opens on [from_ps, to_ps].
+// The view opens on the cycles [from, to] (the VCD's time unit is a cycle).
 void write_gtkw(core::OutputSet& outputs, const std::string& path, const std::string& vcd, const std::vector<Tracer::ProbeInfo>& probes,
-                double from_ps, double to_ps);
+                uint64_t from, uint64_t to);
 
 }  // namespace shadetlm::modules
