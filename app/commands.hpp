@@ -33,6 +33,7 @@ Command add_compare_command(CLI::App& app);
 Command add_precompute_command(CLI::App& app);
 Command add_parallax_bench_command(CLI::App& app);
 Command add_timing_check_command(CLI::App& app);
+Command add_cost_command(CLI::App& app);
 // The parallax maps' subcommands of `precompute` (app/parallax_command.cpp): each with
 // the function that runs it when it was the one parsed.
 void add_map_precompute(CLI::App* precompute, std::vector<std::pair<CLI::App*, std::function<int()>>>& runs);

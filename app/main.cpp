@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
   std::vector<app::Command> commands = {app::add_render_command(app), app::add_reference_command(app),
                                         app::add_compare_command(app), app::add_bench_command(app),
                                         app::add_precompute_command(app), app::add_parallax_bench_command(app),
-                                        app::add_timing_check_command(app)};
+                                        app::add_timing_check_command(app), app::add_cost_command(app)};
   app::tidy_help(app);
   try {
     app.parse(argc, argv);

@@ -282,6 +282,31 @@ void print_error(const nlohmann::json& e, double reference_s) {
   std::cout << "  golden model's truth: " << (truth.empty() ? "the shading model" : truth) << "\n";
 }
 
+// The silicon of the blocks' arithmetic (docs/silicon.md): the total, then each block's
+// area, largest first; the blocks whose format has no figure named with the reason.
+void print_silicon(const nlohmann::json& stats) {
+  const nlohmann::json& s = stats["silicon"];
+  std::cout << "  silicon (" << s["node"].get<std::string>() << ", arithmetic only): "
+            << (s["area_mm2"].is_null() ? "area needs the systemc engine" : core::figure(s["area_mm2"].get<double>()) + " mm2")
+            << ", " << core::figure(s["energy_nj_per_shaded_pixel"].get<double>()) << " nJ a shaded pixel";
+  if (!s["power_mw"].is_null())
+    std::cout << ", " << core::figure(s["power_mw"].get<double>()) << " mW at "
+              << core::figure(stats["clock_mhz"].get<double>()) << " MHz";
+  std::cout << "\n";
+  std::vector<std::pair<double, std::string>> areas;
+  for (const auto& [name, b] : stats["blocks"].items()) {
+    const nlohmann::json& bs = b["silicon"];
+    if (!bs["priced"].get<bool>())
+      std::cout << "  silicon of " << name << " not priced: " << bs["why"].get<std::string>() << "\n";
+    else if (!bs["area_mm2"].is_null() && bs["area_mm2"].get<double>() > 0)
+      areas.emplace_back(bs["area_mm2"].get<double>(), name);
+  }
+  std::sort(areas.rbegin(), areas.rend());
+  std::string line;
+  for (const auto& [area, name] : areas) line += (line.empty() ? "" : ", ") + name + " " + core::figure(area);
+  if (!line.empty()) std::cout << "    area by block, mm2: " << line << "\n";
+}
+
 // The run's summary on stdout: what was rendered, how long it took, the error and what was written.
 void print_summary(const RenderOptions& opt, const core::Scene& scene, const modules::RenderResult& r,
                    const nlohmann::json& stats, const modules::Inspect& inspect, double reference_s) {
@@ -293,6 +318,7 @@ void print_summary(const RenderOptions& opt, const core::Scene& scene, const mod
     std::cout << "  " << r.frame_cycles << " cycles at " << core::figure(r.clock_mhz) << " MHz ("
               << core::figure(stats["sim_time_s"].get<double>() * 1e3) << " ms simulated), bottleneck "
               << stats["bottleneck"].get<std::string>() << "\n";
+  print_silicon(stats);
   if (opt.compare) print_error(stats["error"], reference_s);
   if (!inspect.vcd.empty())
     std::cout << "  traced " << r.trace_records << " pixel outputs into " << inspect.vcd << " (view: gtkwave "

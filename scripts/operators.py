@@ -26,7 +26,8 @@ the clock period: the energy of one operation a cycle.
 
 Usage: scripts/operators.py [--doc] [--fresh] [--jobs N] [--widths "8 12 ..."] [--ops "add mul ..."]
        scripts/operators.py --check   the 8-bit add and mul through the flow (ctest operators_flow)
-  --doc    the tables into docs/rtl.md between its <!-- operators:N --> markers
+  --doc    the tables into docs/rtl.md between its <!-- operators:N --> markers, and their
+           power laws into src/shadetlm/cost/operator_fits.inc (the program's cost model)
   --fresh  synthesize again what out/cells/operators.json holds (by default a row saved by an
            earlier run on the same flow, library and tools is taken as it is, and only the
            missing ones are synthesized)
@@ -186,6 +187,29 @@ def tables(rows):
     return "\n".join(out) + "\n"
 
 
+FITS = cells.ROOT / "src/shadetlm/cost/operator_fits.inc"
+
+
+def write_fits(rows, stamp):
+    """The power laws the program prices operations by (src/shadetlm/cost/), written beside
+    the doc's tables from the same rows, so that the two cannot differ."""
+    lines = ["// Written by scripts/operators.py --doc (flow %s): do not edit." % stamp,
+             "// {operation, area c, area k, energy c, energy k}: area um^2 = c * W^k and energy pJ",
+             "// = c * W^k of one operation of a W-bit word, fitted over W = %s bits (docs/rtl.md)."
+             % ", ".join(str(w) for w in sorted(set(r["width"] for r in rows)))]
+    for o in OPS:
+        pts = sorted((r["width"], r) for r in rows if r["op"] == o)
+        if len(pts) < 3 or any(r[key] <= 0 for _, r in pts for key in ("area_um2", "energy_pj")):
+            fail(f"{o}: fewer than three widths measured, or a figure not positive: no power law to write")
+        area = power_law([(w, r["area_um2"]) for w, r in pts])
+        energy = power_law([(w, r["energy_pj"]) for w, r in pts])
+        lines.append('{"%s", %.6g, %.6g, %.6g, %.6g},' % (o, area[0], area[1], energy[0], energy[1]))
+    tmp = FITS.with_name(FITS.name + ".tmp")
+    tmp.write_text("\n".join(lines) + "\n")
+    os.replace(tmp, FITS)
+    print(f"{FITS.relative_to(cells.ROOT)} written")
+
+
 def check():
     """The 8-bit add and mul through the flow: each area the sum of its cells' (cells.py
     --check holds Yosys's area to the library's), the multiplier larger and slower, both
@@ -281,6 +305,7 @@ def main(argv):
     print(text, end="")
     (out / "operators.txt").write_text(text)
     if doc:
+        write_fits(list(rows.values()), stamp)
         cells.subprocess.run([sys.executable, str(cells.ROOT / "scripts/doc-tables.py"), str(out / "operators.txt"),
                               str(cells.ROOT / "docs/rtl.md"), "operators", "4"], check=True)
         print("docs/rtl.md updated")

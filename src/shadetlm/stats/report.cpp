@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "shadetlm/cost/silicon.hpp"
+
 namespace shadetlm::modules {
 
 const BlockReport* RenderResult::bottleneck() const {
@@ -15,6 +17,49 @@ Ops RenderResult::total_ops() const {
   Ops o;
   for (const auto& b : blocks) o += b.stats.ops;
   return o;
+}
+
+// Area, energy and power of every block's operators and of the whole (docs/silicon.md);
+// each block's own figures into its entry of `blocks`.
+nlohmann::json RenderResult::silicon_json(nlohmann::json& blocks_json) const {
+  double area_um2 = 0, energy_pj = 0;
+  uint64_t unpriced_ops = 0;
+  nlohmann::json unpriced_blocks = nlohmann::json::array();
+  for (const auto& b : blocks) {
+    const std::string format = b.numbers ? b.numbers->format : "float32";
+    const uint64_t items = b.stats.pixels > 0 ? b.stats.pixels : b.stats.packets;  // setup: triangles
+    const bool counted = frame_cycles > 0;  // the loop counts no block's pixels: no units
+    const cost::BlockSilicon s = cost::block_silicon(b.stats.ops, items, b.timing.ii, core::NumberFormat::parse(format),
+                                                     "pipeline." + b.name + ".format");
+    nlohmann::json& bj = blocks_json[b.name]["silicon"];
+    bj = {{"format", format}, {"priced", s.priced}};
+    if (!s.priced) {
+      bj["why"] = s.why;
+      unpriced_blocks.push_back(b.name);
+      continue;
+    }
+    nlohmann::json units = nlohmann::json::object();
+    for (size_t k = 0; k < std::size(cost::kOperations); ++k) units[cost::name_of(cost::kOperations[k])] = s.units[k];
+    bj["units"] = counted ? units : nlohmann::json();
+    bj["area_mm2"] = counted ? nlohmann::json(s.area_um2 * 1e-6) : nlohmann::json();
+    bj["energy_nj"] = s.energy_pj * 1e-3;
+    bj["energy_nj_per_item"] = counted && items > 0 ? nlohmann::json(s.energy_pj * 1e-3 / double(items)) : nlohmann::json();
+    bj["unpriced_ops"] = s.unpriced_ops;
+    area_um2 += s.area_um2, energy_pj += s.energy_pj, unpriced_ops += s.unpriced_ops;
+  }
+  nlohmann::json j = {{"node", cost::kNode},
+                      {"activity", cost::kActivity},
+                      {"priced", "the arithmetic operators of each block (add, mul, div, sqrt, rsqrt); not its "
+                                 "registers, tables, caches or the DRAM"},
+                      {"area_mm2", frame_cycles > 0 ? nlohmann::json(area_um2 * 1e-6) : nlohmann::json()},
+                      {"energy_nj", energy_pj * 1e-3},
+                      {"energy_nj_per_shaded_pixel", pixels_shaded > 0 ? energy_pj * 1e-3 / double(pixels_shaded) : 0.0},
+                      {"unpriced_ops", unpriced_ops},
+                      {"unpriced_blocks", unpriced_blocks}};
+  // Power at the model's clock: the frame's energy over its simulated time. The loop has
+  // no timing and counts no block's pixels: no power and no area (null).
+  j["power_mw"] = frame_cycles > 0 ? nlohmann::json(energy_pj * 1e-3 * clock_mhz / double(frame_cycles)) : nlohmann::json();
+  return j;
 }
 
 nlohmann::json RenderResult::stats_json() const {
@@ -126,6 +171,7 @@ nlohmann::json RenderResult::stats_json() const {
     }
     j["utilization_over_time"] = over_time;
   }
+  j["silicon"] = silicon_json(j["blocks"]);
   const nlohmann::json total = total_ops().to_json();
   j["ops"] = total;
   nlohmann::json per_pixel;

@@ -74,6 +74,7 @@ struct RenderResult {
   const BlockReport* bottleneck() const;  // the block with the most busy cycles
   Ops total_ops() const;
   nlohmann::json stats_json() const;
+  nlohmann::json silicon_json(nlohmann::json& blocks_json) const;  // (stats_json's "silicon")
 };
 
 }  // namespace shadetlm::modules

@@ -1,0 +1,119 @@
+#!/usr/bin/env python3
+"""The silicon tables of docs/silicon.md, printed from the program's own cost model:
+1. one operation of each kind in each number format (`shadetlm cost --json`);
+2. the floating-point operators set against published ratios (Horowitz, ISSCC 2014, 45 nm:
+   a float32 add takes 9 times a 32-bit integer add's energy, a float32 product 1.19
+   times a 32-bit integer product's), the integer ones here the model's 32-bit fixed point;
+3. each golden scene's area, energy a shaded pixel and power, and its largest block
+   (`render --stats`, the SystemC engine);
+4. the normalize block in each mode and format on golden/sphere.
+
+Usage: scripts/silicon-report.py SHADETLM ROOT
+Exit 0; 2 with one line when the program cannot be run or prints what it should not."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+FORMATS = ["float32", "float16", "fixed:3.20", "fixed:1.12", "fixed:2.8"]
+OPS = ["add", "mul", "div", "sqrt", "rsqrt"]
+SCENES = ["sphere", "bump-sphere", "bump-plane", "texture-screen", "texture-object", "parallax-steps", "demo"]
+# Published energy ratios at 45 nm, 0.9 V (M. Horowitz, "Computing's energy problem (and
+# what we can do about it)", ISSCC 2014): float32 add 0.9 pJ over int32 add 0.1 pJ;
+# float32 mul 3.7 pJ over int32 mul 3.1 pJ.
+PUBLISHED = {"add": 0.9 / 0.1, "mul": 3.7 / 3.1}
+
+
+def fail(message):
+    print("silicon-report: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+def run(argv):
+    try:
+        p = subprocess.run(argv, capture_output=True, text=True, timeout=600)
+    except OSError as e:
+        fail(f"{argv[0]}: {e.strerror}")
+    if p.returncode != 0:
+        fail(f"{' '.join(argv[1:3])}: exit {p.returncode}: {p.stderr.strip()[:200]}")
+    return p.stdout
+
+
+def cost(bin_, formats):
+    try:
+        return json.loads(run([bin_, "cost", *formats, "--json"]))["formats"]
+    except (ValueError, KeyError) as e:
+        fail(f"cost --json: not the figures it should print ({e})")
+
+
+def render_stats(bin_, scene, sets=()):
+    with tempfile.TemporaryDirectory(prefix="silicon-") as tmp:
+        argv = [bin_, "render", scene, "-o", os.path.join(tmp, "f.exr"), "--stats", os.path.join(tmp, "s.json"),
+                "--compression", "none"]
+        for s in sets:
+            argv += ["--set", s]
+        run(argv)
+        with open(os.path.join(tmp, "s.json")) as f:
+            return json.load(f)
+
+
+def operations_table(figures):
+    out = ["| format | " + " | ".join(f"{o}: µm², pJ" for o in OPS) + " |", "|---|" + "---:|" * len(OPS)]
+    for f in FORMATS:
+        out.append(f"| {f} | " + " | ".join("%.0f, %.1f" % (figures[f][o]["area_um2"], figures[f][o]["energy_pj"])
+                                           for o in OPS) + " |")
+    return out
+
+
+def published_table(figures):
+    fx = figures["fixed:15.16"]  # a 32-bit word
+    out = ["| operation | float32 ÷ 32-bit fixed, energy (model) | float32 ÷ int32, energy (Horowitz, 45 nm) |"
+           " float32 ÷ 32-bit fixed, area (model) |", "|---|---:|---:|---:|"]
+    for o, ratio in PUBLISHED.items():
+        f = figures["float32"][o]
+        out.append("| %s | %.2f | %.2f | %.2f |" % (o, f["energy_pj"] / fx[o]["energy_pj"], ratio,
+                                                   f["area_um2"] / fx[o]["area_um2"]))
+    return out
+
+
+def scenes_table(bin_, root):
+    out = ["| scene | area, mm² | energy a shaded pixel, nJ | power at the clock, mW | largest block (mm²) |"
+           " operations not priced |", "|---|---:|---:|---:|---|---:|"]
+    for name in SCENES:
+        s = render_stats(bin_, os.path.join(root, "golden", name, "scene.json"))
+        si = s["silicon"]
+        blocks = [(b["silicon"]["area_mm2"] or 0, n) for n, b in s["blocks"].items() if b["silicon"]["priced"]]
+        area, block = max(blocks)
+        out.append("| %s | %.3f | %.3g | %.4g | %s (%.3f) | %d |" % (
+            name, si["area_mm2"], si["energy_nj_per_shaded_pixel"], si["power_mw"], block, area, si["unpriced_ops"]))
+    return out
+
+
+def normalize_table(bin_, root):
+    out = ["| mode | format | units (add, mul, div, sqrt, rsqrt) | area, mm² | energy a pixel, nJ |",
+           "|---|---|---|---:|---:|"]
+    scene = os.path.join(root, "golden", "sphere", "scene.json")
+    for mode in ["exact", "forward-difference", "rsqrt0", "rsqrt1", "rsqrt2"]:
+        for fmt in ["float32", "fixed:1.12"]:
+            s = render_stats(bin_, scene, [f"pipeline.normalize.mode={mode}", f"pipeline.normalize.format={fmt}"])
+            n = s["blocks"]["normalize"]["silicon"]
+            units = ", ".join(str(n["units"][o]) for o in OPS)
+            out.append("| %s | %s | %s | %.4f | %.3g |" % (mode, fmt, units, n["area_mm2"], n["energy_nj_per_item"]))
+    return out
+
+
+def main():
+    if len(sys.argv) != 3:
+        fail("usage: scripts/silicon-report.py SHADETLM ROOT")
+    bin_, root = sys.argv[1:]
+    if not os.path.isdir(os.path.join(root, "golden")):
+        fail(f"{root}: no golden/ folder: not the project's root")
+    figures = cost(bin_, FORMATS + ["fixed:15.16"])
+    for table in (operations_table(figures), published_table(figures), scenes_table(bin_, root),
+                  normalize_table(bin_, root)):
+        print("\n".join(table) + "\n")
+
+
+if __name__ == "__main__":
+    main()
