@@ -84,6 +84,20 @@ check typo-subcommand 2 "$bin" precompute normalmp
 expect_output typo-subcommand "did you mean 'normalmap'"
 check typo-option 2 "$bin" render --vdc "$tmp/t.vcd"
 expect_output typo-option "did you mean --vcd"
+# The silicon of a render's arithmetic (docs/silicon.md): on the console, and per operation.
+check silicon-line 0 "$bin" render "$src/golden/sphere/scene.json" -o "$tmp/si.exr"
+expect_output silicon-line "silicon (OSU 0.18 um"
+expect_output silicon-line "area by block, mm2: lighting"
+check silicon-unpriced 0 "$bin" render "$src/golden/sphere/scene.json" -o "$tmp/si.exr" --allow-overflow \
+  --set pipeline.normalize.format=fixed:12.40
+expect_output silicon-unpriced "silicon of normalize not priced: fixed:12.40 (pipeline.normalize.format) is a 53-bit word"
+check cost-json 0 "$bin" cost float32 fixed:1.12 --json
+python3 -c 'import json, sys; f = json.load(open(sys.argv[1]))["formats"]; assert f["float32"]["div"]["area_um2"] > f["fixed:1.12"]["div"]["area_um2"] > 0, f' \
+  "$tmp/out" && ((passes++)) || { echo "FAIL cost-json: see above"; ((failures++)); }
+check cost-wide 2 "$bin" cost fixed:12.40
+expect_output cost-wide "shadetlm: cost: FORMAT: fixed:12.40 is a 53-bit word"
+check cost-unknown 2 "$bin" cost flaot32
+expect_output cost-unknown 'unknown number format "flaot32"'
 # Frames that cannot be compared are trouble (2), said on stderr; a difference is 1.
 check small 0 "$bin" reference -o "$tmp/small.exr" --set camera.resolution=[32,24]
 check other-resolution 2 "$bin" compare "$tmp/small.exr" "$tmp/demo.exr"

@@ -316,6 +316,8 @@ bad bench-table-counts "doc.md: no instruction counts" bench-table.py doc.md doc
 bad dem-to-png-zip "not.npz" dem-to-png.py not.npz out.png
 bad vcd-causality-stats "nostats.json" vcd-causality.py trace.vcd nostats.json
 bad merge-vcd-timescale 'trace.vcd: its $timescale' merge-vcd.py trace.vcd trace.vcd out.vcd
+bad silicon-report-usage "usage" silicon-report.py
+bad silicon-report-root "doc.md: no golden" silicon-report.py "$bin" doc.md
 bad golden-cycles-usage "usage" golden-cycles.py
 bad block-share-args "stdin" block-share.py extra
 bad make-stress-scenes-out "doc.md" make-stress-scenes.py doc.md
