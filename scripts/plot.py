@@ -66,6 +66,9 @@ def load(path):
         for key in ["wall_q1_s", "wall_q3_s", "wall_min_s", "wall_max_s"]:
             r[key] = number(key, default=r["wall_s"])
         r["wall_runs"] = number("wall_runs", int, 1)
+        # The silicon (docs/silicon.md): 0 where the CSV has none (older sweeps, a block
+        # not priced), and a family with a 0 gets no such plot.
+        r["area_mm2"], r["energy_nj"] = number("area_mm2", default=0), number("energy_nj_per_pixel", default=0)
         r["ops"] = sum(number(op, int) for op in OPS)
         r["bytes"] = 64 * number("line", int)  # 64-byte lines (docs/pipeline.md)
         r["err_rmse"] = max(number("err_rmse"), ERR_FLOOR)
@@ -85,6 +88,8 @@ COSTS = [
     ("ops", "operations per frame (add, mul, div, sqrt, rsqrt, lut, fetch)", lambda r: r["ops"]),
     ("bytes", "bytes the texture unit reads per frame (64-byte lines, a line buffer per pixel)",
      lambda r: r["bytes"]),
+    ("area", "area of the blocks' arithmetic (mm², OSU 0.18 um)", lambda r: r["area_mm2"]),
+    ("energy", "energy of the blocks' arithmetic per shaded pixel (nJ, OSU 0.18 um)", lambda r: r["energy_nj"]),
 ]
 COST = {name: value for name, _, value in COSTS}
 AXIS = {name: axis.split(" (")[0].split(":")[0] for name, axis, _ in COSTS}

@@ -253,7 +253,8 @@ def measure(runs, tmp):
                 try:
                     e = s["error"]["rgb"]
                     out.writerow([index, family, scene, config, wall, s["frame_cycles"], s["pixels"]["shaded"]] +
-                                 [s["ops"][op] for op in OPS] + [e["max"], e["rmse"], e["psnr"]] + [wall] * 4 + [1])
+                                 [s["ops"][op] for op in OPS] + [e["max"], e["rmse"], e["psnr"]] + [wall] * 4 + [1] +
+                                 silicon(s))
                 except (KeyError, TypeError) as e:
                     shards.fail("the stats of %s on %s lack %s: not the program of this checkout?" % (BIN, scene, e))
                 partial.write("%d\n" % index)
@@ -365,9 +366,20 @@ def spread(t):
 
 
 # wall_s is the median of wall_runs samples, the columns after err_psnr its spread (at the
-# end, so that the columns before them stay where they were).
+# end, so that the columns before them stay where they were); then the silicon of the
+# blocks' arithmetic (docs/silicon.md), empty where a block's format has no figure.
 COLUMNS = (["run", "family", "scene", "configuration", "wall_s", "frame_cycles", "pixels"] + OPS +
-           ["err_max", "err_rmse", "err_psnr", "wall_q1_s", "wall_q3_s", "wall_min_s", "wall_max_s", "wall_runs"])
+           ["err_max", "err_rmse", "err_psnr", "wall_q1_s", "wall_q3_s", "wall_min_s", "wall_max_s", "wall_runs",
+            "area_mm2", "energy_nj_per_pixel"])
+
+
+def silicon(s):
+    """[area in mm², energy a shaded pixel in nJ] of a render's stats; empty when some block
+    is not priced (its total would leave that block out)."""
+    si = s["silicon"]
+    if si["unpriced_blocks"]:
+        return ["", ""]
+    return ["%.6g" % si["area_mm2"], "%.6g" % si["energy_nj_per_shaded_pixel"]]
 
 
 def check_program():

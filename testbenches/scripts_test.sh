@@ -231,6 +231,9 @@ expect sweep-plan-one [ "$(cat "$tmp/stdout")" == 1 ]
 ok sweep-shard sweep.py "$bin" "$src" --shard 0/1 --results sweep-ok --match "$one" --resolution 16,12 --no-map-cache
 ok sweep-merge sweep.py "$bin" "$src" --merge sweep-ok --repeats 0
 expect sweep-merged [ "$(wc -l <"$work/sweep-ok/sweep.csv")" == 2 ]
+# The run's silicon: an area and an energy a pixel, both positive.
+expect sweep-silicon python3 -c 'import csv, sys; r = next(csv.DictReader(open(sys.argv[1])))
+assert float(r["area_mm2"]) > 0 and float(r["energy_nj_per_pixel"]) > 0, r' "$work/sweep-ok/sweep.csv"
 expect sweep-no-progress [ -z "$(find "$work/sweep-ok" -name '*.progress' -o -name '*.tmp.*')" ]
 stdin=$work/sweep-ok/sweep.csv ok sweep-time sweep.py "$bin" "$src" --time 1 --resolution 16,12 --no-map-cache
 expect sweep-timed grep -q ',normal,golden/sphere/scene.json,' "$tmp/stdout"
