@@ -21,7 +21,11 @@ if ((doc)); then
   python3 "$root/scripts/doc-tables.py" --run "$root/docs/benchmarks.md" findings 5 -- \
     python3 "$root/scripts/sweep-findings.py" "$csv" >/dev/null
   python3 "$root/scripts/doc-tables.py" --run "$root/docs/benchmarks.md" pareto 2 -- "${report[@]}"
-  for png in "$plots"/*.png; do cp "$png" "$root/docs/images/sweep-$(basename "$png")"; done
+  # The plots the page shows (the rest stay in out/plots, on its index.html).
+  for png in "$plots"/*.png; do
+    name=sweep-$(basename "$png")
+    if grep -qF "images/$name" "$root/docs/benchmarks.md"; then cp "$png" "$root/docs/images/$name"; fi
+  done
 else
   "${report[@]}"
 fi
