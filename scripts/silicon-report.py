@@ -6,11 +6,17 @@
    times a 32-bit integer product's), the integer ones here the model's 32-bit fixed point;
 3. each golden scene's area, energy a shaded pixel and power, and its largest block
    (`render --stats`, the SystemC engine);
-4. the normalize block in each mode and format on golden/sphere.
+4. the normalize block in each mode and format on golden/sphere;
+5. the papers' cost claims in silicon: normal increments (the walker's constant increments,
+   re-seeded per line and per 8 pixels, against perspective-correct interpolation; the
+   normalization's forward difference against the exact root), bump mapping (classic
+   against the paper's paths), object-space texturing against the screen-space filters on
+   a plane at 45°, 75° and 85°, each with its error against the golden model.
 
 Usage: scripts/silicon-report.py SHADETLM ROOT
 Exit 0; 2 with one line when the program cannot be run or prints what it should not."""
 import json
+import math
 import os
 import subprocess
 import sys
@@ -47,12 +53,14 @@ def cost(bin_, formats):
         fail(f"cost --json: not the figures it should print ({e})")
 
 
-def render_stats(bin_, scene, sets=()):
+def render_stats(bin_, scene, sets=(), compare=False):
     with tempfile.TemporaryDirectory(prefix="silicon-") as tmp:
         argv = [bin_, "render", scene, "-o", os.path.join(tmp, "f.exr"), "--stats", os.path.join(tmp, "s.json"),
                 "--compression", "none"]
         for s in sets:
             argv += ["--set", s]
+        if compare:
+            argv.append("--compare-reference")
         if sets:  # (the unit's format saturates on some pixels, as calibrate.py's render does; counted in the stats)
             argv.append("--allow-overflow")
         run(argv)
@@ -105,6 +113,69 @@ def normalize_table(bin_, root):
     return out
 
 
+def claim_row(bin_, what, scene, sets, blocks=None):
+    """A configuration's arithmetic (the blocks named, or all) and its error, as a table row."""
+    s = render_stats(bin_, scene, sets, compare=True)
+    chosen = [b for n, b in s["blocks"].items() if blocks is None or n in blocks]
+    area = sum(b["silicon"]["area_mm2"] for b in chosen)
+    energy = sum(b["silicon"]["energy_nj"] for b in chosen) / max(1, s["pixels"]["shaded"])
+    unpriced = sum(b["silicon"]["unpriced_ops"] for b in chosen) / max(1, s["pixels"]["shaded"])
+    return "| %s | %.4f | %.4g | %.3g | %.2e | %.1f |" % (what, area, energy, unpriced, s["error"]["rgb"]["rmse"],
+                                                       s["error"]["rgb"]["psnr"])
+
+
+CLAIM_HEAD = ["| configuration | area, mm² | energy a shaded pixel, nJ | tables and fetches a pixel (not priced) "
+              "| RMSE | PSNR (dB) |", "|---|---:|---:|---:|---:|---:|"]
+
+
+def plane_scene(tmp, view, path, texture_sets):
+    """A checkered plane `view` degrees off the view direction (as scripts/texture-report.py's)."""
+    t = math.radians(view)
+    doc = {"format": 1,
+           "camera": {"position": [0, 2.6 * math.sin(t), 2.6 * math.cos(t)], "target": [0, 0, 0], "fov_y": 40,
+                      "resolution": [192, 144], "near": 0.05, "far": 100, "local_viewer": False},
+           "ambient": [0.25, 0.25, 0.25],
+           "lights": [{"type": "directional", "direction": [-0.3, -0.6, -0.7], "intensity": 0.8}],
+           "textures": {"t": {"type": "checker", "size": [256, 256], "cells": 16}},
+           "materials": {"m": {"texture": "t", "ambient": [1, 1, 1], "diffuse": [0.9, 0.9, 0.9],
+                               "specular": [0, 0, 0], "path": path}},
+           "objects": [{"shape": "plane", "size": [3, 3], "tessellation": [4, 4], "uv_repeat": [2, 2],
+                        "material": "m"}]}
+    name = os.path.join(tmp, "plane-%d-%s.json" % (view, path))
+    with open(name, "w") as f:
+        json.dump(doc, f)
+    return name
+
+
+def claims_tables(bin_, root):
+    golden = lambda name: os.path.join(root, "golden", name, "scene.json")
+    walker = ["normal_interp", "normalize"]
+    normal = list(CLAIM_HEAD)
+    for what, sets in [("constant increments (affine), no re-seed", ["pipeline.normal_interp.mode=affine"]),
+                       ("constant increments, re-seeded per line", ["pipeline.normal_interp.mode=affine",
+                                                                    "pipeline.normal_interp.reseed=line"]),
+                       ("constant increments, re-seeded every 8 pixels", ["pipeline.normal_interp.mode=affine",
+                                                                          "pipeline.normal_interp.reseed=tile8"]),
+                       ("perspective-correct", ["pipeline.normal_interp.mode=perspective"]),
+                       ("affine, normalization by forward difference",
+                        ["pipeline.normal_interp.mode=affine", "pipeline.normalize.mode=forward-difference"]),
+                       ("affine, normalization exact", ["pipeline.normal_interp.mode=affine",
+                                                        "pipeline.normalize.mode=exact"])]:
+        normal.append(claim_row(bin_, what, golden("sphere"), sets, walker))
+    bump = list(CLAIM_HEAD)
+    for path in ["bump-classic", "bump-tangent", "bump-square", "bump-object"]:
+        bump.append(claim_row(bin_, path, golden("bump-sphere"), ["materials.red.path=" + path]))
+    texture = list(CLAIM_HEAD)
+    with tempfile.TemporaryDirectory(prefix="silicon-planes-") as tmp:
+        for view in [45, 75, 85]:
+            texture.append(claim_row(bin_, "%d°: object space (texel_project)" % view,
+                                     plane_scene(tmp, view, "texture-object", None), []))
+            for filt in ["ewa", "anisotropic"]:
+                texture.append(claim_row(bin_, "%d°: %s" % (view, filt), plane_scene(tmp, view, "texture-screen", None),
+                                         ["pipeline.texture_fetch.filter=" + filt]))
+    return normal, bump, texture
+
+
 def main():
     if len(sys.argv) != 3:
         fail("usage: scripts/silicon-report.py SHADETLM ROOT")
@@ -113,7 +184,7 @@ def main():
         fail(f"{root}: no golden/ folder: not the project's root")
     figures = cost(bin_, FORMATS + ["fixed:15.16"])
     for table in (operations_table(figures), published_table(figures), scenes_table(bin_, root),
-                  normalize_table(bin_, root)):
+                  normalize_table(bin_, root), *claims_tables(bin_, root)):
         print("\n".join(table) + "\n")
 
 
