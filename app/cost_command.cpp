@@ -20,15 +20,17 @@ struct Options {
 
 // Each format's operations; a format without a figure is refused (exit 2), naming it.
 int run_cost(const Options& opt) {
-  nlohmann::json j = {{"node", cost::kNode}, {"activity", cost::kActivity}, {"formats", nlohmann::json::object()}};
+  // (ordered: the formats and operations in the order asked and declared)
+  nlohmann::ordered_json j = {{"node", cost::kNode}, {"activity", cost::kActivity},
+                              {"formats", nlohmann::ordered_json::object()}};
   for (const std::string& name : opt.formats) {
     core::NumberFormat f;
     try {
       f = core::NumberFormat::parse(name);
     } catch (const std::invalid_argument& e) {
-      throw core::InputError("cost", "FORMAT", name + ": " + e.what());
+      throw core::InputError("cost", "FORMAT", e.what());
     }
-    nlohmann::json& ops = j["formats"][name];
+    nlohmann::ordered_json& ops = j["formats"][name];
     for (cost::Operation op : cost::kOperations) {
       const std::optional<cost::OperatorCost> c = cost::operation_cost(op, f);
       if (!c)

@@ -288,7 +288,10 @@ void print_silicon(const nlohmann::json& stats) {
   const nlohmann::json& s = stats["silicon"];
   std::cout << "  silicon (" << s["node"].get<std::string>() << ", arithmetic only): "
             << (s["area_mm2"].is_null() ? "area needs the systemc engine" : core::figure(s["area_mm2"].get<double>()) + " mm2")
-            << ", " << core::figure(s["energy_nj_per_shaded_pixel"].get<double>()) << " nJ a shaded pixel";
+            << ", "
+            << (s["energy_nj_per_shaded_pixel"].is_null()
+                    ? std::string("no pixel shaded")
+                    : core::figure(s["energy_nj_per_shaded_pixel"].get<double>()) + " nJ a shaded pixel");
   if (!s["power_mw"].is_null())
     std::cout << ", " << core::figure(s["power_mw"].get<double>()) << " mW at "
               << core::figure(stats["clock_mhz"].get<double>()) << " MHz";

@@ -113,6 +113,8 @@ def main():
     if not a.out.endswith(".vcd"):
         fail(a.out, "the output must end in .vcd")
     p_head, p_steps, p_ps = read(a.pipeline)
+    if p_ps != 1000 or "one time unit is one cycle" not in p_head:  # (a render's VCD of before: a period a cycle)
+        fail(a.pipeline, "not a render's VCD of one time unit a cycle ($timescale 1 ns): render it again")
     r_head, r_steps, r_ps = read(a.rtl)
     # New identifiers for every variable of both files (the two files' overlap).
     fresh, rename = identifiers(), [{}, {}]

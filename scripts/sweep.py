@@ -377,7 +377,7 @@ def silicon(s):
     """[area in mm², energy a shaded pixel in nJ] of a render's stats; empty when some block
     is not priced (its total would leave that block out)."""
     si = s["silicon"]
-    if si["unpriced_blocks"]:
+    if si["unpriced_blocks"] or si["area_mm2"] is None or si["energy_nj_per_shaded_pixel"] is None:
         return ["", ""]
     return ["%.6g" % si["area_mm2"], "%.6g" % si["energy_nj_per_shaded_pixel"]]
 

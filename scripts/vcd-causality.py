@@ -12,6 +12,7 @@ STATS.json (`render --stats`) gives the blocks' order and latencies; the VCD's t
 unit is a cycle.
 """
 import json
+import re
 import sys
 
 
@@ -31,34 +32,38 @@ def read_vcd(path):
         changed.clear()
 
     with open(path) as f:
-        tokens = iter(f.read().split())
-        for tok in tokens:
-            if tok == "$scope":
-                next(tokens)
-                scope.append(next(tokens))
-            elif tok == "$upscope":
-                scope.pop()
-            elif tok == "$var":
-                _kind, _width, ident, name = next(tokens), next(tokens), next(tokens), next(tokens)
-                if name in ("valid", "ready", "x", "y", "triangle") and scope:
-                    ids[ident] = (scope[-1], name)
-            elif tok.startswith("#"):
-                flush()
-                later = int(tok[1:])
-                if now is not None and any(v.get("valid") == 1 and v.get("ready", 1) == 0 for v in values.values()):
-                    stalled[0] += later - now
-                now = later
-            elif tok[0] in "01" and tok[1:] in ids:
-                block, name = ids[tok[1:]]
-                values.setdefault(block, {})[name] = int(tok[0])
+        text = f.read()
+    # Times are cycles: a render's VCD of before, in ps, would pass every pair.
+    if not re.search(r"\$timescale\s*1\s*ns\s*\$end", text):
+        raise ValueError("its $timescale is not 1 ns (one time unit a cycle)")
+    tokens = iter(text.split())
+    for tok in tokens:
+        if tok == "$scope":
+            next(tokens)
+            scope.append(next(tokens))
+        elif tok == "$upscope":
+            scope.pop()
+        elif tok == "$var":
+            _kind, _width, ident, name = next(tokens), next(tokens), next(tokens), next(tokens)
+            if name in ("valid", "ready", "x", "y", "triangle") and scope:
+                ids[ident] = (scope[-1], name)
+        elif tok.startswith("#"):
+            flush()
+            later = int(tok[1:])
+            if now is not None and any(v.get("valid") == 1 and v.get("ready", 1) == 0 for v in values.values()):
+                stalled[0] += later - now
+            now = later
+        elif tok[0] in "01" and tok[1:] in ids:
+            block, name = ids[tok[1:]]
+            values.setdefault(block, {})[name] = int(tok[0])
+            changed.add(block)
+        elif tok[0] == "b":
+            ident = next(tokens)
+            if ident in ids:
+                block, name = ids[ident]
+                values.setdefault(block, {})[name] = None if tok == "bx" else int(tok[1:], 2)  # x: not valid
                 changed.add(block)
-            elif tok[0] == "b":
-                ident = next(tokens)
-                if ident in ids:
-                    block, name = ids[ident]
-                    values.setdefault(block, {})[name] = None if tok == "bx" else int(tok[1:], 2)  # x: not valid
-                    changed.add(block)
-        flush()
+    flush()
     return seen, stalled[0]
 
 
@@ -82,7 +87,8 @@ def main():
     try:
         seen, stalled = read_vcd(sys.argv[1])
     except (OSError, ValueError, StopIteration, IndexError) as e:
-        fail("%s: not a VCD it can read: %s" % (sys.argv[1], e.strerror if isinstance(e, OSError) else type(e).__name__))
+        fail("%s: not a VCD it can read: %s" % (sys.argv[1], e.strerror if isinstance(e, OSError) else
+                                                   str(e) if isinstance(e, ValueError) and str(e) else type(e).__name__))
     order = [b for b in elaborated if b in seen and b in latency]
     checked = broken = overtakes = 0
     for a, b in zip(order, order[1:]):

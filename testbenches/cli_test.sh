@@ -296,6 +296,9 @@ for time, changes in steps[:-1]:
     checked += 1
 assert checked > 10, checked
 assert "[treeopen] shadetlm." in gtkw and "shadetlm.cycle[63:0]" in gtkw
+# The view opens on the first traced pixels: its start is a time step of the VCD (in cycles).
+start = re.search(r"^\[timestart\] (\d+)$", gtkw, re.M).group(1)
+assert int(start) > 0 and ("\n#%s\n" % start) in vcd, start
 PY
 
 echo "$passes passed, $failures failed"

@@ -155,6 +155,8 @@ printf '[{"scene": "sphere"' >"$work/regress-shard/shards/regress-0-of-1.json"
 printf 'not a zip\n' >"$work/not.npz"
 printf '# doc\n' >"$work/doc.md"
 printf '$enddefinitions $end\n' >"$work/trace.vcd"
+printf '$timescale 1 ps $end\n$enddefinitions $end\n#2000\n' >"$work/old.vcd"  # a render's VCD of before: ps
+printf '{"clock_mhz": 500, "elaborated": ["a"], "blocks": {"a": {"latency": 1}}}\n' >"$work/stats-a.json"
 
 # --- sweep.py: options.
 one='^normal golden/sphere/scene.json .*perspective;.*mode=exact;'  # one run
@@ -319,6 +321,8 @@ bad bench-table-counts "doc.md: no instruction counts" bench-table.py doc.md doc
 bad dem-to-png-zip "not.npz" dem-to-png.py not.npz out.png
 bad vcd-causality-stats "nostats.json" vcd-causality.py trace.vcd nostats.json
 bad merge-vcd-timescale 'trace.vcd: its $timescale' merge-vcd.py trace.vcd trace.vcd out.vcd
+bad merge-vcd-old "old.vcd: not a render's VCD of one time unit a cycle" merge-vcd.py old.vcd old.vcd out.vcd
+bad vcd-causality-old 'old.vcd: not a VCD it can read: its $timescale is not 1 ns' vcd-causality.py old.vcd stats-a.json
 bad silicon-report-usage "usage" silicon-report.py
 bad silicon-report-root "doc.md: no golden" silicon-report.py "$bin" doc.md
 bad golden-cycles-usage "usage" golden-cycles.py

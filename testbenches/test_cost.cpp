@@ -67,11 +67,11 @@ TEST_CASE("cost: each format's operations from the operators, growing with the w
   }
 }
 
-TEST_CASE("cost: a block's units keep its II, its energy is every operation's", "[cost]") {
+TEST_CASE("cost: a block's units are its operations a cycle of its work, its energy every operation's", "[cost]") {
   const core::NumberFormat f32 = format("float32");
   modules::Ops ops;
-  ops.add = 80, ops.mul = 60, ops.sqrt = 1, ops.lut = 7;  // over 10 items
-  const cost::BlockSilicon s = cost::block_silicon(ops, 10, 3, f32, "pipeline.x.format");
+  ops.add = 80, ops.mul = 60, ops.sqrt = 1, ops.lut = 7;  // in 30 cycles (10 items at II 3)
+  const cost::BlockSilicon s = cost::block_silicon(ops, 30, f32, "pipeline.x.format");
   REQUIRE(s.priced);
   // 8 adds an item in 3 cycles: 3 adders; 6 products: 2 multipliers; a root for ten items: one.
   CHECK(s.units[0] == 3);
@@ -84,15 +84,28 @@ TEST_CASE("cost: a block's units keep its II, its energy is every operation's", 
              sqrt = *cost::operation_cost(Operation::Sqrt, f32);
   CHECK(s.area_um2 == Approx(3 * add.area_um2 + 2 * mul.area_um2 + sqrt.area_um2));
   CHECK(s.energy_pj == Approx(80 * add.energy_pj + 60 * mul.energy_pj + sqrt.energy_pj));
-  // An exact multiple needs no more: 6 an item at II 3 is 2 units, at II 1 six.
+  // An exact multiple needs no more: 60 products in 30 cycles are 2 units, in 10 six.
   ops = {};
   ops.mul = 60;
-  CHECK(cost::block_silicon(ops, 10, 3, f32, "").units[1] == 2);
-  CHECK(cost::block_silicon(ops, 10, 1, f32, "").units[1] == 6);
-  const cost::BlockSilicon wide = cost::block_silicon(ops, 10, 1, format("fixed:12.40"), "pipeline.x.format");
+  CHECK(cost::block_silicon(ops, 30, f32, "").units[1] == 2);
+  CHECK(cost::block_silicon(ops, 10, f32, "").units[1] == 6);
+  const cost::BlockSilicon wide = cost::block_silicon(ops, 10, format("fixed:12.40"), "pipeline.x.format");
   CHECK(!wide.priced);
   CHECK(wide.why.find("pipeline.x.format") != std::string::npos);
   CHECK(wide.why.find("53-bit") != std::string::npos);
+}
+
+TEST_CASE("cost: a block that spends a cycle a light shares its units over them", "[cost][systemc]") {
+  // Lighting takes a light a cycle (lighting_kernel.hpp): with two lights, a pixel's
+  // products are done in two cycles, so it needs half as many multipliers (rounded up) as
+  // one pixel's products.
+  const core::Scene scene = core::load_scene(test::source_path("golden/demo/scene.json"), {});
+  REQUIRE(scene.lights.size() == 2);
+  const nlohmann::json j = modules::render_systemc(scene).stats_json();
+  const nlohmann::json& l = j["blocks"]["lighting"];
+  const double mul_a_pixel = l["ops"]["mul"].get<double>() / l["pixels"].get<double>();
+  REQUIRE(mul_a_pixel > 2);
+  CHECK(l["silicon"]["units"]["mul"].get<uint64_t>() == uint64_t(std::ceil(mul_a_pixel / 2 - 1e-9)));
 }
 
 TEST_CASE("cost: a render's silicon is its blocks', its power the energy over the simulated time",
@@ -110,8 +123,8 @@ TEST_CASE("cost: a render's silicon is its blocks', its power the energy over th
   CHECK(s["energy_nj"].get<double>() == Approx(energy));
   CHECK(area > 0);
   CHECK(s["energy_nj_per_shaded_pixel"].get<double>() == Approx(energy / j["pixels"]["shaded"].get<double>()));
-  CHECK(s["power_mw"].get<double>() ==
-        Approx(energy * j["clock_mhz"].get<double>() / j["frame_cycles"].get<double>()));
+  // mW: the frame's joules over its simulated seconds, times 1000.
+  CHECK(s["power_mw"].get<double>() == Approx(energy * 1e-9 / j["sim_time_s"].get<double>() * 1e3));
   // The loop counts the same operations, so the same energy; it has no timing and counts
   // no block's pixels: no power, no units, no area.
   const nlohmann::json loop = modules::render_loop(scene).stats_json()["silicon"];

@@ -13,8 +13,9 @@ namespace shadetlm::cost {
 // The node and the conditions every figure is for.
 inline constexpr const char* kNode = "OSU 0.18 um standard cells (osu018), 1.8 V";
 inline constexpr double kActivity = 0.5;  // each input bit's transitions a cycle (random data)
-// The words the operators were synthesized at, and the widest a power law is taken to.
-inline constexpr int kFittedMinBits = 8, kFittedMaxBits = 24, kMaxPricedBits = 32;
+// The widest word a power law is taken to (they are fitted over the words
+// scripts/operators.py synthesized, 8 to 24 bits, and extrapolated outside them).
+inline constexpr int kMaxPricedBits = 32;
 
 struct OperatorCost {
   double area_um2 = 0, energy_pj = 0;  // of one unit; of one operation through it

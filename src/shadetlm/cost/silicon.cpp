@@ -1,7 +1,6 @@
 #include "shadetlm/cost/silicon.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 namespace shadetlm::cost {
 namespace {
@@ -19,7 +18,7 @@ uint64_t count_of(const modules::Ops& ops, Operation op) {
 
 }  // namespace
 
-BlockSilicon block_silicon(const modules::Ops& ops, uint64_t items, int ii, const core::NumberFormat& format,
+BlockSilicon block_silicon(const modules::Ops& ops, uint64_t work_cycles, const core::NumberFormat& format,
                            const std::string& setting) {
   BlockSilicon s;
   s.unpriced_ops = ops.lut + ops.fetch;
@@ -32,8 +31,8 @@ BlockSilicon block_silicon(const modules::Ops& ops, uint64_t items, int ii, cons
               "-bit word: the operators are priced up to " + std::to_string(kMaxPricedBits) + " bits";
       return s;
     }
-    const double per_item = double(n) / double(std::max<uint64_t>(items, 1));
-    s.units[k] = uint64_t(std::ceil(per_item / double(std::max(ii, 1)) - 1e-9));
+    const uint64_t cycles = std::max<uint64_t>(work_cycles, 1);
+    s.units[k] = std::max<uint64_t>((n + cycles - 1) / cycles, 1);  // ⌈n / cycles⌉, exact in integers
     s.area_um2 += double(s.units[k]) * c->area_um2;
     s.energy_pj += double(n) * c->energy_pj;
   }

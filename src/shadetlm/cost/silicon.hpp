@@ -20,11 +20,13 @@ struct BlockSilicon {
   uint64_t unpriced_ops = 0;  // table reads and texel fetches: no figure yet
 };
 
-// `ops` done over `items` (the pixels, or triangles, its II is for) in `format`: a unit of
-// each kind for every operation of it an item needs within the II cycles, rounded up
-// (an operation a span of 8 pixels still needs its unit); the energy of every
-// operation counted. `setting` names the format's setting for `why`.
-BlockSilicon block_silicon(const modules::Ops& ops, uint64_t items, int ii, const core::NumberFormat& format,
+// `ops` done in `work_cycles` (the cycles the block computed in, by the timing model) in
+// `format`: a unit of each kind for every operation of it a cycle needs, rounded up (at
+// least one where it does any: a root every 8 pixels still needs its unit), so a block
+// that spends more cycles on an item (a light a cycle, a tracer's iteration a cycle)
+// shares its units over them; the energy of every operation counted. `setting` names the
+// format's setting for `why`.
+BlockSilicon block_silicon(const modules::Ops& ops, uint64_t work_cycles, const core::NumberFormat& format,
                            const std::string& setting);
 
 }  // namespace shadetlm::cost

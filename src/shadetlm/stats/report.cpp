@@ -20,7 +20,7 @@ Ops RenderResult::total_ops() const {
 }
 
 // Area, energy and power of every block's operators and of the whole (docs/silicon.md);
-// each block's own figures into its entry of `blocks`.
+// it also writes each block's own figures into its entry of `blocks_json`.
 nlohmann::json RenderResult::silicon_json(nlohmann::json& blocks_json) const {
   double area_um2 = 0, energy_pj = 0;
   uint64_t unpriced_ops = 0;
@@ -28,8 +28,10 @@ nlohmann::json RenderResult::silicon_json(nlohmann::json& blocks_json) const {
   for (const auto& b : blocks) {
     const std::string format = b.numbers ? b.numbers->format : "float32";
     const uint64_t items = b.stats.pixels > 0 ? b.stats.pixels : b.stats.packets;  // setup: triangles
-    const bool counted = frame_cycles > 0;  // the loop counts no block's pixels: no units
-    const cost::BlockSilicon s = cost::block_silicon(b.stats.ops, items, b.timing.ii, core::NumberFormat::parse(format),
+    const bool counted = frame_cycles > 0;  // the loop has no timing: no cycles, no units
+    // The cycles it computed in: busy, less a cycle for each pixel it only passed on.
+    const uint64_t work_cycles = b.stats.busy_cycles - std::min(b.stats.bypassed, b.stats.busy_cycles);
+    const cost::BlockSilicon s = cost::block_silicon(b.stats.ops, work_cycles, core::NumberFormat::parse(format),
                                                      "pipeline." + b.name + ".format");
     nlohmann::json& bj = blocks_json[b.name]["silicon"];
     bj = {{"format", format}, {"priced", s.priced}};
@@ -53,7 +55,8 @@ nlohmann::json RenderResult::silicon_json(nlohmann::json& blocks_json) const {
                                  "registers, tables, caches or the DRAM"},
                       {"area_mm2", frame_cycles > 0 ? nlohmann::json(area_um2 * 1e-6) : nlohmann::json()},
                       {"energy_nj", energy_pj * 1e-3},
-                      {"energy_nj_per_shaded_pixel", pixels_shaded > 0 ? energy_pj * 1e-3 / double(pixels_shaded) : 0.0},
+                      {"energy_nj_per_shaded_pixel",
+                       pixels_shaded > 0 ? nlohmann::json(energy_pj * 1e-3 / double(pixels_shaded)) : nlohmann::json()},
                       {"unpriced_ops", unpriced_ops},
                       {"unpriced_blocks", unpriced_blocks}};
   // Power at the model's clock: the frame's energy over its simulated time. The loop has
