@@ -11,7 +11,10 @@
    re-seeded per line and per 8 pixels, against perspective-correct interpolation; the
    normalization's forward difference against the exact root), bump mapping (classic
    against the paper's paths), object-space texturing against the screen-space filters on
-   a plane at 45°, 75° and 85°, each with its error against the golden model.
+   a plane at 45°, 75° and 85°, each with its error against the golden model; the
+   parallax tracers (the refined distance map, the box-gap map, classic and relaxed
+   cones, Donnelly's map as published), each at the fewest iterations that reach its own
+   least worst error, on golden/parallax-steps.
 
 Usage: scripts/silicon-report.py SHADETLM ROOT
 Exit 0; 2 with one line when the program cannot be run or prints what it should not."""
@@ -176,7 +179,33 @@ def claims_tables(bin_, root):
             for filt in ["ewa", "anisotropic"]:
                 texture.append(claim_row(bin_, "%d°: %s" % (view, filt), plane_scene(tmp, view, "texture-screen", None),
                                          ["pipeline.texture_fetch.filter=" + filt]))
-    return normal, bump, texture
+    return normal, bump, texture, parallax_table(bin_, golden("parallax-steps"))
+
+
+def parallax_table(bin_, scene):
+    """Each tracer at the smallest of the caps whose worst error is its least (within 1 %)."""
+    tracers = [("refined distance map", [], "max_iterations"),
+               ("box-gap map", ["parallax.method=distance", "parallax.map=box-gap"], "max_iterations"),
+               ("cone", ["parallax.method=cone"], "max_iterations"),
+               ("relaxed cone", ["parallax.method=cone", "parallax.cones=relaxed"], "max_iterations"),
+               ("Donnelly's map, as published", ["parallax.method=distance", "parallax.map=donnelly"], "steps")]
+    out = ["| tracer | iterations (cap or steps) | worst error | RMSE | area, mm² | energy a shaded pixel, nJ |",
+           "|---|---:|---:|---:|---:|---:|"]
+    for name, sets, limit in tracers:
+        runs = []
+        for cap in [16, 64, 256]:
+            s = render_stats(bin_, scene, ["materials.carved." + k for k in sets + ["parallax.%s=%d" % (limit, cap)]],
+                             compare=True)
+            runs.append((cap, s))
+        floor = min(s["error"]["rgb"]["max"] for _, s in runs)
+        cap, s = next((c, s) for c, s in runs if s["error"]["rgb"]["max"] <= floor * 1.01)
+        si = s["silicon"]
+        if si["area_mm2"] is None or si["unpriced_blocks"]:
+            fail(f"{scene}: {name}: a block not priced")
+        out.append("| %s | %d | %.2e | %.2e | %.3f | %.4g |" % (name, cap, s["error"]["rgb"]["max"],
+                                                                  s["error"]["rgb"]["rmse"], si["area_mm2"],
+                                                                  si["energy_nj_per_shaded_pixel"]))
+    return out
 
 
 def main():
