@@ -25,60 +25,31 @@ OperatorCost shifter(int n) { return synthesized("mux", n) * std::ceil(std::log2
 // A float operation from the fixed-point operators (docs/silicon.md, "Floating point"):
 // the significands' operation, the exponents' adder, the shifts that align and normalize.
 // Rounding is in the operators (each rounds to nearest); special values are not priced.
+// (1/√ is composed in operation_cost.)
 OperatorCost float_cost(Operation op, FloatShape f) {
   const int m = f.significand, e = f.exponent;
-  switch (op) {
-    case Operation::Add: {  // compare and subtract the exponents, align, add with 3 guard
-                            // bits, normalize, adjust the exponent
-      OperatorCost c = synthesized("compare", e);
-      c += synthesized("add", e) * 2;
-      c += shifter(m + 3) * 2;
-      c += synthesized("add", m + 3);
-      return c;
-    }
-    case Operation::Mul: {  // the significands' product, the exponents' sum, one bit of normalization
-      OperatorCost c = synthesized("mul", m);
-      c += synthesized("add", e);
-      c += synthesized("mux", m);
-      return c;
-    }
-    case Operation::Div: {
-      OperatorCost c = synthesized("div", m);
-      c += synthesized("add", e);
-      c += synthesized("mux", m);
-      return c;
-    }
-    case Operation::Sqrt: {  // the exponent halved (wiring) after its bias is taken off
-      OperatorCost c = synthesized("sqrt", m);
-      c += synthesized("add", e);
-      c += synthesized("mux", m);
-      return c;
-    }
-    case Operation::Rsqrt: {  // a square root, then a division (correctly rounded 1/√)
-      OperatorCost c = float_cost(Operation::Sqrt, f);
-      c += float_cost(Operation::Div, f);
-      return c;
-    }
+  if (op == Operation::Add) {  // compare and subtract the exponents, align, add with 3
+                               // guard bits, normalize, adjust the exponent
+    OperatorCost c = synthesized("compare", e);
+    c += synthesized("add", e) * 2;
+    c += shifter(m + 3) * 2;
+    c += synthesized("add", m + 3);
+    return c;
   }
-  throw std::logic_error("float_cost: an operation without a case");
+  // A product, quotient or root: the significands' operator, the exponents' adder (a
+  // root's exponent is halved, wiring, after its bias is taken off), one bit of normalization.
+  OperatorCost c = synthesized(op == Operation::Mul ? "mul" : op == Operation::Div ? "div" : "sqrt", m);
+  c += synthesized("add", e);
+  c += synthesized("mux", m);
+  return c;
 }
 
 // A fixed-point operation of a W-bit word, as the model's type computes it: sums and
-// products saturate; a division and a square root are priced unsaturated; 1/√ is a
-// square root and a division (docs/rtl.md, "Calibration").
+// products saturate; a division and a square root are priced unsaturated (docs/rtl.md,
+// "Calibration").
 OperatorCost fixed_cost(Operation op, int w) {
-  switch (op) {
-    case Operation::Add: return synthesized("add_sat", w);
-    case Operation::Mul: return synthesized("mul_sat", w);
-    case Operation::Div: return synthesized("div", w);
-    case Operation::Sqrt: return synthesized("sqrt", w);
-    case Operation::Rsqrt: {
-      OperatorCost c = synthesized("sqrt", w);
-      c += synthesized("div", w);
-      return c;
-    }
-  }
-  throw std::logic_error("fixed_cost: an operation without a case");
+  return synthesized(op == Operation::Add ? "add_sat" : op == Operation::Mul ? "mul_sat"
+                     : op == Operation::Div ? "div" : "sqrt", w);
 }
 
 }  // namespace
@@ -110,6 +81,12 @@ int word_bits(const core::NumberFormat& format) {
 }
 
 std::optional<OperatorCost> operation_cost(Operation op, const core::NumberFormat& format) {
+  if (op == Operation::Rsqrt) {  // a correctly rounded 1/√: a square root, then a division
+    std::optional<OperatorCost> root = operation_cost(Operation::Sqrt, format), div = operation_cost(Operation::Div, format);
+    if (!root || !div) return std::nullopt;
+    *root += *div;
+    return root;
+  }
   switch (format.kind) {
     case core::NumberFormat::Kind::Float32: return float_cost(op, {24, 8});
     case core::NumberFormat::Kind::Float16: return float_cost(op, {11, 5});
