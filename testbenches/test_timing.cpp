@@ -202,3 +202,81 @@ TEST_CASE("MainPassTiming: blocks that only delay, timed as delays, count as the
   }
   CHECK(delayed > 100);  // (coverage, not the code: most seeds must end with a block still delaying)
 }
+
+// A packet in steady state (main_pass.hpp): the plain sweep times a few pixels by the
+// recurrence, finds the state the sweep reads a shift of the one before, and continues
+// the rest of the packet as a series. Random passes whose work stays the same for runs
+// of packets (so that FIFOs fill and a bottleneck's period reaches every block), with a
+// change now and then (other work, a lead, work per pixel), against the recurrence on
+// every block; a third line inspects every fifth packet, whose every time must be the
+// recurrence's: the windows the series left behind are read back there.
+TEST_CASE("MainPassTiming: a packet in steady state, continued as a series, counts as the recurrence does", "[timing]") {
+  uint64_t extrapolated = 0, pixels = 0;
+  int seeds_extrapolated = 0;
+  for (uint32_t seed = 1; seed <= 300; ++seed) {
+    std::mt19937 rng(seed);
+    auto pick = [&](int lo, int hi) { return int(std::uniform_int_distribution<int>(lo, hi)(rng)); };
+    std::vector<modules::Timing> blocks(size_t(pick(2, 6)));
+    for (auto& t : blocks) t = {uint64_t(pick(1, 40)), uint64_t(pick(1, 6)), uint64_t(pick(1, 16))};
+    modules::MainPassTiming recurrence(blocks), plain(blocks), mixed(blocks);
+    recurrence.time_every_block();
+    recurrence.keep_times = true;
+    mixed.watch_only([](const modules::SpanPacket& p) { return p.y % 5 == 0; });
+    mixed.keep_times = true;
+    const uint64_t bin = uint64_t(pick(1, 60));
+    for (size_t j = 0; j < blocks.size(); ++j)
+      for (auto* line : {&recurrence, &plain, &mixed}) line->times(int(j)).bin_cycles = bin;
+    std::vector<modules::Work> work(blocks.size());
+    std::vector<std::vector<uint16_t>> per_pixel(blocks.size(), std::vector<uint16_t>(modules::kSpanMax));
+    auto new_work = [&](size_t j) {
+      work[j] = {nullptr, uint32_t(pick(0, 3)), nullptr, uint32_t(pick(0, 2) == 0 ? pick(1, 5) : 0)};
+      if (pick(0, 5) == 0) {
+        for (auto& w : per_pixel[j]) w = uint16_t(pick(0, 3));
+        work[j] = {per_pixel[j].data(), 0};
+      }
+    };
+    for (size_t j = 1; j < blocks.size(); ++j) new_work(j);
+    int64_t arrival = 0;
+    for (int packet = 0; packet < 120; ++packet) {
+      if (pick(0, 7) == 0) {  // a new triangle, soon after
+        const int64_t taken = recurrence.start_triangle(arrival);
+        REQUIRE(plain.start_triangle(arrival) == taken);
+        REQUIRE(mixed.start_triangle(arrival) == taken);
+        arrival = taken + pick(0, 8);
+      }
+      if (pick(0, 9) == 0) new_work(size_t(pick(1, int(blocks.size()) - 1)));
+      modules::SpanPacket p{};
+      p.count = pick(1, modules::kSpanMax);
+      p.y = packet;
+      for (size_t j = 1; j < blocks.size(); ++j)
+        for (auto* line : {&recurrence, &plain, &mixed}) line->set_work(int(j), work[j]);
+      const uint64_t hidden = uint64_t(pick(0, 2));
+      for (auto* line : {&recurrence, &plain, &mixed}) line->sweep(p, hidden);
+      if (p.y % 5 == 0) {
+        INFO("seed " << seed << ", packet " << packet);
+        for (size_t j = 0; j < blocks.size(); ++j)
+          for (int i = 0; i < p.count; ++i) {
+            REQUIRE(mixed.start(int(j), i) == recurrence.start(int(j), i));
+            REQUIRE(mixed.handed(int(j), i) == recurrence.handed(int(j), i));
+          }
+      }
+      pixels += uint64_t(p.count);
+    }
+    for (auto* line : {&recurrence, &plain, &mixed}) line->settle();
+    INFO("seed " << seed);
+    CHECK(recurrence.extrapolated() == 0);
+    CHECK(recurrence.end() == plain.end());
+    CHECK(recurrence.end() == mixed.end());
+    for (size_t j = 0; j < blocks.size(); ++j) {
+      INFO("block " << j);
+      check_same_times(recurrence.times(int(j)), plain.times(int(j)));
+      check_same_times(recurrence.times(int(j)), mixed.times(int(j)));
+    }
+    extrapolated += plain.extrapolated();
+    seeds_extrapolated += plain.extrapolated() > 0;
+  }
+  // (coverage, not the code: most seeds reach a steady state, and much of their pixels are series)
+  CHECK(seeds_extrapolated > 200);
+  CHECK(extrapolated > pixels / 4);
+  INFO(extrapolated << " of " << pixels << " pixels continued as series");
+}

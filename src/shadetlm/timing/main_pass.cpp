@@ -310,6 +310,77 @@ void MainPassTiming::delay_packet(int count) {
   }
 }
 
+namespace {
+// Whether window[k] − window[k − 1] = step for every k in [from, to]. (A few k, mostly:
+// without a branch a step, and not vectorized, whose set-up would cost more.)
+__attribute__((optimize("no-tree-vectorize"))) bool arithmetic(const int64_t* window, int64_t from, int64_t to, int64_t step) {
+  int64_t off = 0;
+  for (int64_t k = from; k <= to; ++k) off |= (window[k] - window[k - 1]) ^ step;
+  return off == 0;
+}
+// window[i] = window[n] + (i − n) · step for i in (from, end), from ≥ n.
+void continue_series(int64_t* window, int64_t n, int64_t from, int64_t end, int64_t step) {
+  const int64_t at_n = window[n];
+  for (int64_t i = from + 1; i < end; ++i) window[i] = at_n + (i - n) * step;
+}
+}  // namespace
+
+bool MainPassTiming::steady(size_t timed, int n) const {
+  const int64_t at_n = at(n_);
+  const int64_t period = blocks_[0].s[at_n + n] - blocks_[0].s[at_n + n - 1];
+  // The packet before ended in a series of this period: its last pixels need no check.
+  const bool known = series_end_ == n_ && series_timed_ == timed && series_period_ == period;
+  for (size_t j = 0; j < timed; ++j) {
+    const Slot& b = blocks_[j];
+    const int64_t s_from = n + 1 - starts_back(j), d_from = n + 1 - b.capacity;
+    if (!arithmetic(b.s + at_n, known ? std::max<int64_t>(s_from, 0) : s_from, n, period)) return false;
+    if (!arithmetic(b.d + at_n, known ? std::max<int64_t>(d_from, 0) : d_from, n, period)) return false;
+  }
+  return true;
+}
+
+void MainPassTiming::extrapolate(size_t timed, int n, int count) {
+  const int64_t at_n = at(n_), more = count - 1 - n;
+  const int64_t period = blocks_[0].s[at_n + n] - blocks_[0].s[at_n + n - 1];
+  // Later reads of the packet's windows are of its last pixels: the recurrence's, of the
+  // last starts_back starts and C hand-overs, and steady's, of fewer; but the delays read
+  // their base block's hand-overs over the whole packet when they keep a histogram
+  // (delay_packet).
+  const bool base_read = timed < blocks_.size() && blocks_[timed].t.bin_cycles > 0;
+  for (size_t j = 0; j < timed; ++j) {
+    Slot& b = blocks_[j];
+    int64_t* const starts = b.s + at_n;
+    int64_t* const handed = b.d + at_n;
+    const int64_t o = j == 0 ? b.ii : std::max<int64_t>(b.ii * int64_t(b.work.each), 1);
+    const int64_t start_n = starts[n], freed_before = starts[n - 1] + o;  // (the unit free for pixel n)
+    // Pixel n's increments (raster_chunk's and span_chunk's), each of the pixels after it.
+    if (j == 0) {
+      b.t.blocked += uint64_t(more * (start_n - freed_before));
+    } else {
+      const int64_t ready = std::max(freed_before, handed[n - b.capacity] + 1);
+      b.t.blocked += uint64_t(more * (ready - freed_before));
+      b.t.fifo_cycles += uint64_t(more * (start_n - blocks_[j - 1].d[at_n + n]));
+      // (the FIFO's pixels once each came in: pixel n's, already in the peak)
+      b.head = std::max(b.head, int64_t(n_) + count - int64_t(b.timing.fifo_depth));
+    }
+    continue_series(starts, n, std::max<int64_t>(n, count - 1 - starts_back(j)), count, period);
+    const bool all = base_read && j + 1 == timed;
+    continue_series(handed, n, all ? n : std::max<int64_t>(n, count - 1 - b.capacity), count, period);
+    b.t.busy += uint64_t(more * o);
+    b.free = start_n + more * period + o, b.t.last = handed[count - 1];
+    if (b.t.bin_cycles > 0) series_bins(b.t, start_n + period, period, more, o);
+  }
+  series_end_ = n_ + uint64_t(count), series_period_ = period, series_timed_ = timed;
+  extrapolated_ += uint64_t(more);
+}
+
+void MainPassTiming::series_bins(BlockTimes& t, int64_t first, int64_t period, int64_t count, int64_t busy) {
+  const int64_t end = first + (count - 1) * period + busy;  // the end of the last one's work
+  if (uint64_t(first) / t.bin_cycles == uint64_t(end - 1) / t.bin_cycles)
+    return t.add_to_bins(first, uint64_t(count * busy));
+  for (int64_t k = 0; k < count; ++k) t.add_to_bins(first + k * period, uint64_t(busy));
+}
+
 void MainPassTiming::bin_busy(size_t j, int first, int last, uint64_t busy) {
   if (last <= first) return;
   BlockTimes& t = blocks_[j].t;
@@ -376,8 +447,17 @@ void MainPassTiming::sweep(const SpanPacket& p, uint64_t hidden_before, const st
     if (delay_from_ < blocks) keep_delaying(count);
     // Inspected, every block by the recurrence (the same times: "Blocks that only delay").
     const size_t timed = inspect ? blocks : delay_from_;
-    for (int first = 0; first < count; first += chunk_) {  // block-major in chunks ("Order of the sweep")
-      const int last = std::min(count, first + chunk_);
+    // The first pixel after which the state may be steady: the second of uniform work at
+    // every timed block (the third after a lead).
+    int steady_from = inspect ? count : 1;
+    for (size_t j = 1; j < timed && steady_from < count; ++j) {
+      const Work& w = blocks_[j].work;
+      if (w.per_pixel) steady_from = count;
+      else if (w.first() != w.each) steady_from = 2;
+    }
+    for (int first = 0; first < count;) {  // block-major in chunks ("Order of the sweep")
+      int last = std::min(count, first + chunk_);
+      if (first <= steady_from) last = std::min(last, steady_from + 1);  // a chunk ends where the check begins
       if (inspect) {
         raster_chunk<true>(first, last);
         for (size_t j = 1; j < blocks; ++j) span_chunk<true, false>(j, first, last);
@@ -386,6 +466,11 @@ void MainPassTiming::sweep(const SpanPacket& p, uint64_t hidden_before, const st
         for (size_t j = 1; j < timed; ++j)
           if (blocks_[j].work.per_pixel) span_chunk<false, false>(j, first, last);
           else span_chunk<false, true>(j, first, last);
+      }
+      first = last;
+      if (last > steady_from && last < count && steady(timed, last - 1)) {
+        extrapolate(timed, last - 1, count);
+        first = count;
       }
     }
     if (count > 0 && timed < blocks) delay_packet(count);

@@ -52,6 +52,19 @@
 // which need only the pixels before n to be delays (C ≥ D + 1 and d(n) ≥ d(n−b) + b), and a
 // window holds an older pixel's time or −1 in its place: smaller, so slack too.
 //
+// A packet in steady state (steady, extrapolate; ideal memory, not inspected). The sweep
+// is max-plus: adding a constant P to every time it reads adds P to every time it
+// computes and leaves every statistic's increment (a difference of two times) as it was.
+// So if the state the sweep reads for pixel n + 1 — per timed block j its starts back to
+// n + 1 − b_j (the block before reads s_j(n − b_j), the FIFO's oldest pixel is among
+// them), its hand-overs back to n + 1 − C_j, its unit's free cycle — is the state it
+// read for pixel n plus P, and every timed block's work stays what it was at n, then
+// pixel n + 1 is pixel n plus P at every block, and so is every pixel after it in the
+// packet: their times an arithmetic series, their statistics pixel n's. The state is
+// checked a few pixels into a packet with uniform work (once past a lead) and after each
+// chunk; in steady state, a bottleneck's period P reaches every block before it through
+// back-pressure and stays across packets.
+//
 // Memory (docs/memory.md): a memory client whose pixel moved m > 0 cache lines asks the
 // shared DRAM for them as it starts the pixel; the data is back at r (memory/
 // dram.hpp), and the pixel is done at f_j(n) = max(s_j(n) + II·(w − 1), r) + L. Its
@@ -209,6 +222,8 @@ class MainPassTiming {
   size_t size() const { return blocks_.size(); }
   // The first block of those the plain sweep times as fixed delays (size(): none).
   size_t delaying_from() const { return delay_from_; }
+  // The pixels timed as a steady state's series so far ("A packet in steady state").
+  uint64_t extrapolated() const { return extrapolated_; }
   // Times every block by the recurrence, delays or not (before the first sweep: the
   // tests' reference for the delays).
   void time_every_block();
@@ -237,6 +252,19 @@ class MainPassTiming {
   // Ideal memory: pixels [first, last) of the packet at the raster, then at span block j.
   template <bool kInspect> void raster_chunk(int first, int last);
   template <bool kInspect, bool kUniform> void span_chunk(size_t j, int first, int last);
+  // Whether the state the sweep reads for pixel n + 1 (of the packet) is the one it read
+  // for pixel n plus a constant ("A packet in steady state"), for blocks [0, timed).
+  bool steady(size_t timed, int n) const;
+  // Pixels (n, count) of the packet at blocks [0, timed): pixel n's times plus a multiple
+  // of the period, pixel n's statistics each.
+  void extrapolate(size_t timed, int n, int count);
+  // How far back the sweep reads block j's starts and hand-overs from a pixel it times
+  // (steady's state): the block before reads s_j(n − b_j), and the FIFO's oldest pixel is
+  // among those; its register term reads d_j(n − C_j). (The raster's starts are read one
+  // pixel back, for its walk: its FIFO holds triangles.)
+  int64_t starts_back(size_t j) const { return j == 0 ? 1 : int64_t(blocks_[j].timing.fifo_depth); }
+  // `count` pixels busy `busy` cycles each from `first`, one every `period`: into t's bins.
+  static void series_bins(BlockTimes& t, int64_t first, int64_t period, int64_t count, int64_t busy);
   // The packet's pixels at the blocks that only delay ("Blocks that only delay"), timed
   // as delays: their figures only, not their windows.
   void delay_packet(int count);
@@ -269,6 +297,12 @@ class MainPassTiming {
   std::vector<int> delay_work_;  // the work every pixel had at such a block (-1: none yet)
   int64_t* room_ = nullptr;    // a window of starts "before cycle 0": a FIFO always with room
   uint64_t n_ = 0;             // pixels swept so far
+  uint64_t extrapolated_ = 0;  // of them, the pixels timed by extrapolate
+  // The last packet extrapolated ended at pixel series_end_ in a series of that period,
+  // at blocks [0, series_timed_): their windows' last pixels need no check (steady).
+  uint64_t series_end_ = 0;
+  int64_t series_period_ = 0;
+  size_t series_timed_ = 0;
   int64_t triangle_start_ = -1;  // when the raster took its last triangle
   std::vector<std::vector<Times>> times_;
   std::vector<TimedObserver*> observers_;
