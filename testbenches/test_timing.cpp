@@ -207,7 +207,8 @@ TEST_CASE("MainPassTiming: blocks that only delay, timed as delays, count as the
 // recurrence, finds the state the sweep reads a shift of the one before, and continues
 // the rest of the packet as a series. Random passes whose work stays the same for runs
 // of packets (so that FIFOs fill and a bottleneck's period reaches every block), with a
-// change now and then (other work, a lead, work per pixel), against the recurrence on
+// change now and then (other work, a lead, work per pixel: random, or the same from some
+// pixel on), against the recurrence on
 // every block; a third line inspects every fifth packet, whose every time must be the
 // recurrence's: the windows the series left behind are read back there.
 TEST_CASE("MainPassTiming: a packet in steady state, continued as a series, counts as the recurrence does", "[timing]") {
@@ -230,8 +231,10 @@ TEST_CASE("MainPassTiming: a packet in steady state, continued as a series, coun
     std::vector<std::vector<uint16_t>> per_pixel(blocks.size(), std::vector<uint16_t>(modules::kSpanMax));
     auto new_work = [&](size_t j) {
       work[j] = {nullptr, uint32_t(pick(0, 3)), nullptr, uint32_t(pick(0, 2) == 0 ? pick(1, 5) : 0)};
-      if (pick(0, 5) == 0) {
-        for (auto& w : per_pixel[j]) w = uint16_t(pick(0, 3));
+      if (pick(0, 3) == 0) {  // per pixel: random, or the same from a random pixel on
+        const int same_from = pick(0, 1) ? pick(0, modules::kSpanMax) : modules::kSpanMax;
+        const auto same = uint16_t(pick(0, 3));
+        for (int i = 0; i < modules::kSpanMax; ++i) per_pixel[j][size_t(i)] = i < same_from ? uint16_t(pick(0, 3)) : same;
         work[j] = {per_pixel[j].data(), 0};
       }
     };
@@ -275,8 +278,8 @@ TEST_CASE("MainPassTiming: a packet in steady state, continued as a series, coun
     extrapolated += plain.extrapolated();
     seeds_extrapolated += plain.extrapolated() > 0;
   }
-  // (coverage, not the code: most seeds reach a steady state, and much of their pixels are series)
-  CHECK(seeds_extrapolated > 200);
-  CHECK(extrapolated > pixels / 4);
+  // (coverage, not the code: most seeds reach a steady state, and many pixels are series)
   INFO(extrapolated << " of " << pixels << " pixels continued as series");
+  CHECK(seeds_extrapolated > 200);
+  CHECK(extrapolated > pixels / 6);
 }

@@ -325,9 +325,13 @@ void continue_series(int64_t* window, int64_t n, int64_t from, int64_t end, int6
 }
 }  // namespace
 
-bool MainPassTiming::steady(size_t timed, int n) const {
+bool MainPassTiming::steady(size_t timed, int n, int count) const {
   const int64_t at_n = at(n_);
   const int64_t period = blocks_[0].s[at_n + n] - blocks_[0].s[at_n + n - 1];
+  // Work given per pixel: the same from pixel n − 1 to the packet's end.
+  for (size_t j = 1; j < timed; ++j)
+    if (blocks_[j].work.per_pixel && !std::all_of(blocks_[j].w + n - 1, blocks_[j].w + count, [&](uint16_t w) { return w == blocks_[j].w[n]; }))
+      return false;
   // The packet before ended in a series of this period: its last pixels need no check.
   const bool known = series_end_ == n_ && series_timed_ == timed && series_period_ == period;
   for (size_t j = 0; j < timed; ++j) {
@@ -351,7 +355,7 @@ void MainPassTiming::extrapolate(size_t timed, int n, int count) {
     Slot& b = blocks_[j];
     int64_t* const starts = b.s + at_n;
     int64_t* const handed = b.d + at_n;
-    const int64_t o = j == 0 ? b.ii : std::max<int64_t>(b.ii * int64_t(b.work.each), 1);
+    const int64_t o = j == 0 ? b.ii : std::max<int64_t>(b.ii * int64_t(b.w[n]), 1);
     const int64_t start_n = starts[n], freed_before = starts[n - 1] + o;  // (the unit free for pixel n)
     // Pixel n's increments (raster_chunk's and span_chunk's), each of the pixels after it.
     if (j == 0) {
@@ -447,13 +451,12 @@ void MainPassTiming::sweep(const SpanPacket& p, uint64_t hidden_before, const st
     if (delay_from_ < blocks) keep_delaying(count);
     // Inspected, every block by the recurrence (the same times: "Blocks that only delay").
     const size_t timed = inspect ? blocks : delay_from_;
-    // The first pixel after which the state may be steady: the second of uniform work at
-    // every timed block (the third after a lead).
+    // The first pixel after which the state may be steady: the second of the packet (the
+    // third after a lead; steady checks work given per pixel).
     int steady_from = inspect ? count : 1;
     for (size_t j = 1; j < timed && steady_from < count; ++j) {
       const Work& w = blocks_[j].work;
-      if (w.per_pixel) steady_from = count;
-      else if (w.first() != w.each) steady_from = 2;
+      if (!w.per_pixel && w.first() != w.each) steady_from = 2;
     }
     for (int first = 0; first < count;) {  // block-major in chunks ("Order of the sweep")
       int last = std::min(count, first + chunk_);
@@ -468,7 +471,7 @@ void MainPassTiming::sweep(const SpanPacket& p, uint64_t hidden_before, const st
           else span_chunk<false, true>(j, first, last);
       }
       first = last;
-      if (last > steady_from && last < count && steady(timed, last - 1)) {
+      if (last > steady_from && last < count && steady(timed, last - 1, count)) {
         extrapolate(timed, last - 1, count);
         first = count;
       }

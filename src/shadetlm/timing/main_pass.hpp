@@ -61,8 +61,8 @@
 // read for pixel n plus P, and every timed block's work stays what it was at n, then
 // pixel n + 1 is pixel n plus P at every block, and so is every pixel after it in the
 // packet: their times an arithmetic series, their statistics pixel n's. The state is
-// checked a few pixels into a packet with uniform work (once past a lead) and after each
-// chunk; in steady state, a bottleneck's period P reaches every block before it through
+// checked a few pixels into a packet (once past a lead) and after each chunk, where the
+// work stays the same to the packet's end; in steady state, a bottleneck's period P reaches every block before it through
 // back-pressure and stays across packets.
 //
 // Memory (docs/memory.md): a memory client whose pixel moved m > 0 cache lines asks the
@@ -253,8 +253,9 @@ class MainPassTiming {
   template <bool kInspect> void raster_chunk(int first, int last);
   template <bool kInspect, bool kUniform> void span_chunk(size_t j, int first, int last);
   // Whether the state the sweep reads for pixel n + 1 (of the packet) is the one it read
-  // for pixel n plus a constant ("A packet in steady state"), for blocks [0, timed).
-  bool steady(size_t timed, int n) const;
+  // for pixel n plus a constant, and every pixel from n − 1 to `count` has the same work
+  // ("A packet in steady state"), for blocks [0, timed).
+  bool steady(size_t timed, int n, int count) const;
   // Pixels (n, count) of the packet at blocks [0, timed): pixel n's times plus a multiple
   // of the period, pixel n's statistics each.
   void extrapolate(size_t timed, int n, int count);
