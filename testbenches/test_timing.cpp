@@ -208,11 +208,12 @@ TEST_CASE("MainPassTiming: blocks that only delay, timed as delays, count as the
 // the rest of the packet as a series. Random passes whose work stays the same for runs
 // of packets (so that FIFOs fill and a bottleneck's period reaches every block), with a
 // change now and then (other work, a lead, work per pixel: random, or the same from some
-// pixel on), against the recurrence on
+// pixel on), and new triangles and hidden steps that the walk may or may not hide behind
+// the series (a packet then continued whole), against the recurrence on
 // every block; a third line inspects every fifth packet, whose every time must be the
 // recurrence's: the windows the series left behind are read back there.
 TEST_CASE("MainPassTiming: a packet in steady state, continued as a series, counts as the recurrence does", "[timing]") {
-  uint64_t extrapolated = 0, pixels = 0;
+  uint64_t extrapolated = 0, pixels = 0, continued = 0;
   int seeds_extrapolated = 0;
   for (uint32_t seed = 1; seed <= 300; ++seed) {
     std::mt19937 rng(seed);
@@ -276,10 +277,12 @@ TEST_CASE("MainPassTiming: a packet in steady state, continued as a series, coun
       check_same_times(recurrence.times(int(j)), mixed.times(int(j)));
     }
     extrapolated += plain.extrapolated();
+    continued += plain.continued();
     seeds_extrapolated += plain.extrapolated() > 0;
   }
   // (coverage, not the code: most seeds reach a steady state, and many pixels are series)
-  INFO(extrapolated << " of " << pixels << " pixels continued as series");
+  INFO(extrapolated << " of " << pixels << " pixels continued as series, " << continued << " packets whole");
   CHECK(seeds_extrapolated > 200);
   CHECK(extrapolated > pixels / 6);
+  CHECK(continued > 1000);
 }

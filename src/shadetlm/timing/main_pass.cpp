@@ -63,6 +63,7 @@ MainPassTiming::MainPassTiming(std::vector<Timing> blocks, DramTiming dram) {
     --from;
   }
   delay_work_.assign(blocks_.size(), -1);
+  series_.assign(blocks_.size(), Increments{});
   delay_from_ = blocks_.size();
   delay_from(from);
   times_.assign(blocks_.size(), std::vector<Times>(64));
@@ -325,13 +326,9 @@ void continue_series(int64_t* window, int64_t n, int64_t from, int64_t end, int6
 }
 }  // namespace
 
-bool MainPassTiming::steady(size_t timed, int n, int count) const {
+bool MainPassTiming::steady(size_t timed, int n) const {
   const int64_t at_n = at(n_);
   const int64_t period = blocks_[0].s[at_n + n] - blocks_[0].s[at_n + n - 1];
-  // Work given per pixel: the same from pixel n − 1 to the packet's end.
-  for (size_t j = 1; j < timed; ++j)
-    if (blocks_[j].work.per_pixel && !std::all_of(blocks_[j].w + n - 1, blocks_[j].w + count, [&](uint16_t w) { return w == blocks_[j].w[n]; }))
-      return false;
   // The packet before ended in a series of this period: its last pixels need no check.
   const bool known = series_end_ == n_ && series_timed_ == timed && series_period_ == period;
   for (size_t j = 0; j < timed; ++j) {
@@ -345,37 +342,76 @@ bool MainPassTiming::steady(size_t timed, int n, int count) const {
 
 void MainPassTiming::extrapolate(size_t timed, int n, int count) {
   const int64_t at_n = at(n_), more = count - 1 - n;
-  const int64_t period = blocks_[0].s[at_n + n] - blocks_[0].s[at_n + n - 1];
+  const int64_t period = n < 0 ? series_period_ : blocks_[0].s[at_n + n] - blocks_[0].s[at_n + n - 1];
   // Later reads of the packet's windows are of its last pixels: the recurrence's, of the
   // last starts_back starts and C hand-overs, and steady's, of fewer; but the delays read
-  // their base block's hand-overs over the whole packet when they keep a histogram
-  // (delay_packet).
-  const bool base_read = timed < blocks_.size() && blocks_[timed].t.bin_cycles > 0;
+  // their base block's hand-overs over the whole packet: when they keep a histogram
+  // (delay_packet), and the first pixel's, which the recurrence did not write here when
+  // the whole packet is a series.
+  const bool base_read = timed < blocks_.size() && (blocks_[timed].t.bin_cycles > 0 || n < 0);
   for (size_t j = 0; j < timed; ++j) {
     Slot& b = blocks_[j];
     int64_t* const starts = b.s + at_n;
     int64_t* const handed = b.d + at_n;
-    const int64_t o = j == 0 ? b.ii : std::max<int64_t>(b.ii * int64_t(b.w[n]), 1);
-    const int64_t start_n = starts[n], freed_before = starts[n - 1] + o;  // (the unit free for pixel n)
-    // Pixel n's increments (raster_chunk's and span_chunk's), each of the pixels after it.
-    if (j == 0) {
-      b.t.blocked += uint64_t(more * (start_n - freed_before));
-    } else {
-      const int64_t ready = std::max(freed_before, handed[n - b.capacity] + 1);
-      b.t.blocked += uint64_t(more * (ready - freed_before));
-      b.t.fifo_cycles += uint64_t(more * (start_n - blocks_[j - 1].d[at_n + n]));
-      // (the FIFO's pixels once each came in: pixel n's, already in the peak)
-      b.head = std::max(b.head, int64_t(n_) + count - int64_t(b.timing.fifo_depth));
-    }
+    Increments& each = series_[j];
+    if (n >= 0) {  // pixel n's increments (raster_chunk's and span_chunk's): each pixel's after it
+      each.w = j == 0 ? 1 : b.w[n];
+      each.o = j == 0 ? b.ii : std::max<int64_t>(b.ii * int64_t(each.w), 1);
+      const int64_t freed_before = starts[n - 1] + each.o;  // the unit free for pixel n
+      const int64_t ready = j == 0 ? starts[n] : std::max(freed_before, handed[n - b.capacity] + 1);
+      each.blocked = ready - freed_before;
+      each.fifo = j == 0 ? 0 : starts[n] - blocks_[j - 1].d[at_n + n];
+    }  // (n = −1: the series' own, from the packet before)
+    b.t.blocked += uint64_t(more * each.blocked);
+    b.t.fifo_cycles += uint64_t(more * each.fifo);
+    b.t.busy += uint64_t(more * each.o);
+    // (the FIFO's pixels once each came in: pixel n's, already in the peak)
+    if (j > 0) b.head = std::max(b.head, int64_t(n_) + count - int64_t(b.timing.fifo_depth));
+    const int64_t start_n = starts[n];
     continue_series(starts, n, std::max<int64_t>(n, count - 1 - starts_back(j)), count, period);
     const bool all = base_read && j + 1 == timed;
     continue_series(handed, n, all ? n : std::max<int64_t>(n, count - 1 - b.capacity), count, period);
-    b.t.busy += uint64_t(more * o);
-    b.free = start_n + more * period + o, b.t.last = handed[count - 1];
-    if (b.t.bin_cycles > 0) series_bins(b.t, start_n + period, period, more, o);
+    b.free = start_n + more * period + each.o, b.t.last = handed[count - 1];
+    if (b.t.bin_cycles > 0) series_bins(b.t, start_n + period, period, more, each.o);
   }
   series_end_ = n_ + uint64_t(count), series_period_ = period, series_timed_ = timed;
   extrapolated_ += uint64_t(more);
+}
+
+bool MainPassTiming::continue_packet(size_t timed, int count) {
+  if (series_end_ != n_ || series_timed_ != timed || count < 2) return false;
+  const int64_t at_n = at(n_), period = series_period_;
+  // The series' pixel i (i ≥ 0: of this packet) in a window.
+  auto series = [&](const int64_t* window, int64_t i) { return i < 0 ? window[at_n + i] : window[at_n - 1] + (i + 1) * period; };
+  Slot& r = blocks_[0];
+  const int64_t walked = r.free;  // the walk to the packet's first pixel (a new triangle, hidden steps)
+  if (walked > series(r.s, 0)) return false;
+  for (size_t j = 1; j < timed; ++j) {
+    const Slot& b = blocks_[j];
+    const uint32_t each = b.w[count - 1], first = b.w[0];  // (work per pixel: the same from pixel 1 on)
+    if (each != series_[j].w || first < each) return false;
+    if (first == each) continue;
+    // A lead: pixel 0 done later and its unit busy longer, neither past the series' times.
+    const int64_t s0 = series(b.s, 0), done = s0 + b.ii * (int64_t(first) - 1) + b.latency;
+    if (b.ii * int64_t(first) > period || done > series(b.d, 0)) return false;
+  }
+  extrapolate(timed, -1, count);
+  // Corrections to the series' increments: the raster's first start waited for the series,
+  // not for the walk; a lead's pixel 0 kept its unit longer, so pixel 1 waited less for a
+  // register.
+  r.t.blocked += uint64_t((series(r.s, 0) - walked) - series_[0].blocked);
+  for (size_t j = 1; j < timed; ++j) {
+    Slot& b = blocks_[j];
+    const int64_t o_each = series_[j].o, o_first = std::max<int64_t>(b.ii * int64_t(b.w[0]), 1);
+    if (o_first == o_each) continue;
+    const int64_t s0 = series(b.s, 0), room = series(b.d, 1 - b.capacity) + 1;
+    const int64_t waited = std::max<int64_t>(room - (s0 + o_first), 0), in_series = std::max<int64_t>(room - (s0 + o_each), 0);
+    b.t.blocked += uint64_t(waited - in_series);
+    b.t.busy += uint64_t(o_first - o_each);
+    if (b.t.bin_cycles > 0) b.t.add_to_bins(s0 + o_each, uint64_t(o_first - o_each));
+  }
+  ++continued_;
+  return true;
 }
 
 void MainPassTiming::series_bins(BlockTimes& t, int64_t first, int64_t period, int64_t count, int64_t busy) {
@@ -451,14 +487,23 @@ void MainPassTiming::sweep(const SpanPacket& p, uint64_t hidden_before, const st
     if (delay_from_ < blocks) keep_delaying(count);
     // Inspected, every block by the recurrence (the same times: "Blocks that only delay").
     const size_t timed = inspect ? blocks : delay_from_;
-    // The first pixel after which the state may be steady: the second of the packet (the
-    // third after a lead; steady checks work given per pixel).
-    int steady_from = inspect ? count : 1;
-    for (size_t j = 1; j < timed && steady_from < count; ++j) {
+    // The first pixel after which the state may be steady ("A packet in steady state"):
+    // the second of the packet, the third after a lead, and the second of those whose work
+    // given per pixel is the same to the packet's end (same_from: the first of them).
+    int steady_from = inspect ? count : 1, same_from = 0;
+    for (size_t j = 1; j < timed && !inspect; ++j) {
       const Work& w = blocks_[j].work;
-      if (!w.per_pixel && w.first() != w.each) steady_from = 2;
+      if (w.per_pixel) {
+        int first_same = count - 1;
+        while (first_same > 0 && w.per_pixel[first_same - 1] == w.per_pixel[count - 1]) --first_same;
+        same_from = std::max(same_from, first_same);
+      } else if (w.first() != w.each) {
+        steady_from = std::max(steady_from, 2);
+      }
     }
-    for (int first = 0; first < count;) {  // block-major in chunks ("Order of the sweep")
+    steady_from = std::max(steady_from, same_from + 1);
+    const bool continued = !inspect && same_from <= 1 && continue_packet(timed, count);
+    for (int first = continued ? count : 0; first < count;) {  // block-major in chunks ("Order of the sweep")
       int last = std::min(count, first + chunk_);
       if (first <= steady_from) last = std::min(last, steady_from + 1);  // a chunk ends where the check begins
       if (inspect) {
@@ -471,7 +516,7 @@ void MainPassTiming::sweep(const SpanPacket& p, uint64_t hidden_before, const st
           else span_chunk<false, true>(j, first, last);
       }
       first = last;
-      if (last > steady_from && last < count && steady(timed, last - 1, count)) {
+      if (last > steady_from && last < count && steady(timed, last - 1)) {
         extrapolate(timed, last - 1, count);
         first = count;
       }

@@ -62,8 +62,15 @@
 // pixel n + 1 is pixel n plus P at every block, and so is every pixel after it in the
 // packet: their times an arithmetic series, their statistics pixel n's. The state is
 // checked a few pixels into a packet (once past a lead) and after each chunk, where the
-// work stays the same to the packet's end; in steady state, a bottleneck's period P reaches every block before it through
-// back-pressure and stays across packets.
+// work stays the same to the packet's end; in steady state, a bottleneck's period P
+// reaches every block before it through back-pressure and stays across packets.
+// A packet after one that ended in a series is the same series from its first pixel
+// (continue_packet) when what differs there cannot change a time: the walk reaches the
+// pixel no later than the series starts it (the raster's term s(n−1) + II was slack, and
+// a later walk stays so), and a lead makes pixel 0 done no later than its series
+// hand-over and keeps the unit no longer than the period (so s(1) = max(…, s(0) + II·w,
+// …) keeps its series value). Their statistics are the series', pixel 0's walk and lead
+// and pixel 1's wait for a register counted apart.
 //
 // Memory (docs/memory.md): a memory client whose pixel moved m > 0 cache lines asks the
 // shared DRAM for them as it starts the pixel; the data is back at r (memory/
@@ -224,6 +231,8 @@ class MainPassTiming {
   size_t delaying_from() const { return delay_from_; }
   // The pixels timed as a steady state's series so far ("A packet in steady state").
   uint64_t extrapolated() const { return extrapolated_; }
+  // Of their packets, those continued whole from the series the one before ended in.
+  uint64_t continued() const { return continued_; }
   // Times every block by the recurrence, delays or not (before the first sweep: the
   // tests' reference for the delays).
   void time_every_block();
@@ -253,12 +262,16 @@ class MainPassTiming {
   template <bool kInspect> void raster_chunk(int first, int last);
   template <bool kInspect, bool kUniform> void span_chunk(size_t j, int first, int last);
   // Whether the state the sweep reads for pixel n + 1 (of the packet) is the one it read
-  // for pixel n plus a constant, and every pixel from n − 1 to `count` has the same work
-  // ("A packet in steady state"), for blocks [0, timed).
-  bool steady(size_t timed, int n, int count) const;
+  // for pixel n plus a constant ("A packet in steady state"), for blocks [0, timed), whose
+  // work is the same from pixel n − 1 to the packet's end.
+  bool steady(size_t timed, int n) const;
   // Pixels (n, count) of the packet at blocks [0, timed): pixel n's times plus a multiple
-  // of the period, pixel n's statistics each.
+  // of the period, pixel n's statistics each (n = −1: the packet before's last pixel).
   void extrapolate(size_t timed, int n, int count);
+  // The whole packet as the series the packet before ended in, when what differs at its
+  // first pixel (the walk to it, a lead) is shown not to change a time; false: not so.
+  // Every block's work is the same from pixel 1 on.
+  bool continue_packet(size_t timed, int count);
   // How far back the sweep reads block j's starts and hand-overs from a pixel it times
   // (steady's state): the block before reads s_j(n − b_j), and the FIFO's oldest pixel is
   // among those; its register term reads d_j(n − C_j). (The raster's starts are read one
@@ -304,6 +317,14 @@ class MainPassTiming {
   uint64_t series_end_ = 0;
   int64_t series_period_ = 0;
   size_t series_timed_ = 0;
+  struct Increments {  // a pixel's, at a block, in that series
+    uint32_t w = 0;       // its work
+    int64_t o = 1;        // its unit's cycles (II · w, or 1)
+    int64_t blocked = 0;  // cycles its unit waited for a register
+    int64_t fifo = 0;     // cycles it spent in the block's FIFO
+  };
+  std::vector<Increments> series_;
+  uint64_t continued_ = 0;         // packets continue_packet timed
   int64_t triangle_start_ = -1;  // when the raster took its last triangle
   std::vector<std::vector<Times>> times_;
   std::vector<TimedObserver*> observers_;
