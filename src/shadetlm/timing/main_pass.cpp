@@ -296,13 +296,14 @@ void MainPassTiming::delay_packet(int count) {
   int64_t after = 1;  // from the base block's hand-over to the start at block j
   for (size_t j = delay_from_; j < blocks_.size(); ++j) {
     Slot& b = blocks_[j];
-    const int64_t done = delay(j), first = base[0] + after, last = base[count - 1] + after;
+    const int64_t done = delay(j), last = base[count - 1] + after;
     b.t.busy += uint64_t(count);         // one cycle a pixel (II·w or 1)
     b.t.fifo_cycles += uint64_t(count);  // in its FIFO from the end of cycle d_{j−1} to s
     b.t.fifo_peak = std::max<uint64_t>(b.t.fifo_peak, 1);
     b.free = last + 1, b.t.last = last + done;
     b.head = int64_t(n_) + count;  // every pixel started before the next comes in
     if (b.t.bin_cycles > 0) {  // (bin_busy, the starts being the base's hand-overs + after)
+      const int64_t first = base[0] + after;  // (the only read of the base's first pixels)
       if (uint64_t(first) / b.t.bin_cycles == uint64_t(last) / b.t.bin_cycles) b.t.add_to_bins(first, uint64_t(count));
       else
         for (int i = 0; i < count; ++i) b.t.add_to_bins(base[i] + after, 1);
@@ -345,10 +346,9 @@ void MainPassTiming::extrapolate(size_t timed, int n, int count) {
   const int64_t period = n < 0 ? series_period_ : blocks_[0].s[at_n + n] - blocks_[0].s[at_n + n - 1];
   // Later reads of the packet's windows are of its last pixels: the recurrence's, of the
   // last starts_back starts and C hand-overs, and steady's, of fewer; but the delays read
-  // their base block's hand-overs over the whole packet: when they keep a histogram
-  // (delay_packet), and the first pixel's, which the recurrence did not write here when
-  // the whole packet is a series.
-  const bool base_read = timed < blocks_.size() && (blocks_[timed].t.bin_cycles > 0 || n < 0);
+  // their base block's hand-overs over the whole packet when they keep a histogram
+  // (delay_packet).
+  const bool base_read = timed < blocks_.size() && blocks_[timed].t.bin_cycles > 0;
   for (size_t j = 0; j < timed; ++j) {
     Slot& b = blocks_[j];
     int64_t* const starts = b.s + at_n;
