@@ -348,7 +348,8 @@ void MainPassTiming::extrapolate(size_t timed, int n, int count) {
   // last starts_back starts and C hand-overs, and steady's, of fewer; but the delays read
   // their base block's hand-overs over the whole packet when they keep a histogram
   // (delay_packet).
-  const bool base_read = timed < blocks_.size() && blocks_[timed].t.bin_cycles > 0;
+  bool base_read = false;
+  for (size_t j = timed; j < blocks_.size(); ++j) base_read = base_read || blocks_[j].t.bin_cycles > 0;
   for (size_t j = 0; j < timed; ++j) {
     Slot& b = blocks_[j];
     int64_t* const starts = b.s + at_n;
