@@ -38,6 +38,19 @@ struct HeightField {
     if (y < 0) y += height;
     return h[size_t(y) * size_t(width) + size_t(x)];
   }
+  // The four texels of the cell whose corner is (x, y), wrapped once: h00 = at(x, y),
+  // h10 = at(x + 1, y), h01 = at(x, y + 1), h11 = at(x + 1, y + 1).
+  struct Corners {
+    float h00, h10, h01, h11;
+  };
+  Corners corners(int x, int y) const {
+    x %= width, y %= height;
+    if (x < 0) x += width;
+    if (y < 0) y += height;
+    const size_t x1 = x + 1 == width ? 0 : size_t(x) + 1, row = size_t(y) * size_t(width);
+    const size_t row1 = y + 1 == height ? 0 : row + size_t(width);
+    return {h[row + size_t(x)], h[row + x1], h[row1 + size_t(x)], h[row1 + x1]};
+  }
 };
 
 // The height field of a height map: its first channel, clamped to [0, 1]. Throws
@@ -52,7 +65,8 @@ Real bilinear_height(const HeightField& f, Real x, Real y) {
   const Real fx = floor(x), fy = floor(y);
   const int i = int(fx), j = int(fy);
   const Real a = x - fx, b = y - fy;
-  const Real h00 = f.at(i, j), h10 = f.at(i + 1, j), h01 = f.at(i, j + 1), h11 = f.at(i + 1, j + 1);
+  const auto c = f.corners(i, j);
+  const Real h00 = c.h00, h10 = c.h10, h01 = c.h01, h11 = c.h11;  // in Real: counted from here
   return (h00 + (h10 - h00) * a) * (Real(1) - b) + (h01 + (h11 - h01) * a) * b;
 }
 
@@ -63,7 +77,8 @@ Real bilinear_height(const HeightField& f, Real x, Real y) {
 template <class Real>
 Real cell_hit(const HeightField& f, int i, int j, Real px, Real py, Real pz, Real dx, Real dy, Real dz,
               Real length, Real slices) {
-  const Real h00 = f.at(i, j), h10 = f.at(i + 1, j), h01 = f.at(i, j + 1), h11 = f.at(i + 1, j + 1);
+  const auto c = f.corners(i, j);
+  const Real h00 = c.h00, h10 = c.h10, h01 = c.h01, h11 = c.h11;
   const Real B = h10 - h00, C = h01 - h00, E = h00 - h10 - h01 + h11;
   const Real q0 = pz - slices * (h00 + B * px + C * py + E * px * py);
   if (q0 <= 0) return 0;

@@ -50,6 +50,11 @@ uint32_t copy_counting_nonfinite(float* __restrict dst, const float* __restrict 
   return bad;
 }
 
+// dst[0 … n) = src[0 … n), a NaN or an infinity written as 0: branch-free, vectorized.
+void copy_finite_or_zero(float* __restrict dst, const float* __restrict src, int n) {
+  for (int i = 0; i < n; ++i) dst[i] = is_nonfinite(src[i]) ? 0.0f : src[i];
+}
+
 }  // namespace
 
 void FramebufferKernel::write_colour(const SpanPacket& p) {
@@ -72,12 +77,13 @@ void FramebufferKernel::process(SpanPacket& p) {
   bad += copy_counting_nonfinite(layer_[4] + base, p.w, n);
   for (int c = 0; c < 3; ++c) bad += copy_counting_nonfinite(layer_[5 + c] + base, p.n[c], n);
   if (iterations_) {  // 0 where a nearer surface without parallax covers the pixel
-    const bool parallax = p.tri->material->path == core::ShadingPath::Parallax;
-    for (int i = 0; i < n; ++i) {
-      const size_t at = base + size_t(i);
-      iterations_[at] = parallax ? p.iterations[i] : 0.0f;
-      const float hit[3] = {p.uvp[0][i], p.uvp[1][i], p.hit_height[i]};
-      for (int k = 0; k < 3; ++k) hit_[k][at] = parallax && std::isfinite(hit[k]) ? hit[k] : 0.0f;  // counted upstream
+    if (p.tri->material->path == core::ShadingPath::Parallax) {
+      std::copy_n(p.iterations, n, iterations_ + base);
+      const float* hit[3] = {p.uvp[0], p.uvp[1], p.hit_height};
+      for (int k = 0; k < 3; ++k) copy_finite_or_zero(hit_[k] + base, hit[k], n);  // counted upstream
+    } else {
+      std::fill_n(iterations_ + base, n, 0.0f);
+      for (int k = 0; k < 3; ++k) std::fill_n(hit_[k] + base, n, 0.0f);
     }
   }
   const bool splatted = p.tri->material->path == core::ShadingPath::TextureObject;
