@@ -746,6 +746,25 @@ TEST_CASE("Donnelly's tracer takes its fixed count of steps and lands near the e
   }
 }
 
+TEST_CASE("a height cell's four texels, wrapped once, are the four wrapped reads", "[parallax]") {
+  // HeightField::corners (the tracers' fast read) against at() on every size that has
+  // a border case: one texel, one row or column, odd sizes; coordinates far outside.
+  for (auto [w, h] : {std::pair{1, 1}, {1, 3}, {3, 1}, {5, 7}}) {
+    core::HeightField f;
+    f.width = w, f.height = h;
+    for (int k = 0; k < w * h; ++k) f.h.push_back(float(k) / float(w * h));
+    for (int y = -3 * h; y <= 3 * h; ++y)
+      for (int x = -3 * w; x <= 3 * w; ++x) {
+        const auto c = f.corners(x, y);
+        INFO(w << "x" << h << " at (" << x << ", " << y << ")");
+        CHECK(c.h00 == f.at(x, y));
+        CHECK(c.h10 == f.at(x + 1, y));
+        CHECK(c.h01 == f.at(x, y + 1));
+        CHECK(c.h11 == f.at(x + 1, y + 1));
+      }
+  }
+}
+
 TEST_CASE("the box-gap transform stays exact on a 4096-texel line", "[parallax]") {
   // The tripled periodic line reaches positions past 2^12; their squares pass float's
   // 2^24, so the envelope is computed in double (a review found float picking the wrong
