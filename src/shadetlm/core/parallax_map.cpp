@@ -41,9 +41,10 @@ float VolumeMap::sample(float x, float y, float z) const {
 std::vector<float> cell_tops(const HeightField& f) {
   std::vector<float> top(f.h.size());
   for (int j = 0; j < f.height; ++j)
-    for (int i = 0; i < f.width; ++i)
-      top[size_t(j) * size_t(f.width) + size_t(i)] =
-          std::max(std::max(f.at(i, j), f.at(i + 1, j)), std::max(f.at(i, j + 1), f.at(i + 1, j + 1)));
+    for (int i = 0; i < f.width; ++i) {
+      const auto c = f.corners(i, j);
+      top[size_t(j) * size_t(f.width) + size_t(i)] = std::max(std::max(c.h00, c.h10), std::max(c.h01, c.h11));
+    }
   return top;
 }
 

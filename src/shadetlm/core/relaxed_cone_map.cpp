@@ -44,7 +44,8 @@ Sectors sectors_meeting(double middle, double half) {
 // in the box of the edges' differences, and −g·ŵ is largest at one of the box's corners u
 // = −g; u·ŵ > tan_min for the ŵ within acos(tan_min/|u|) of u's direction.
 Sectors steep_sectors(const HeightField& f, int i, int j, double slices, double tan_min) {
-  const double h00 = f.at(i, j), h10 = f.at(i + 1, j), h01 = f.at(i, j + 1), h11 = f.at(i + 1, j + 1);
+  const auto c = f.corners(i, j);
+  const double h00 = c.h00, h10 = c.h10, h01 = c.h01, h11 = c.h11;
   const double gx[2] = {slices * (h10 - h00), slices * (h11 - h01)};
   const double gy[2] = {slices * (h01 - h00), slices * (h11 - h10)};
   Sectors mask = 0;
